@@ -1,0 +1,127 @@
+#pragma once
+// Parallel bond (Potyondy & Cundall 2004, §2.2 and eqs. for the bond periphery stresses; PFC
+// linearpbond). A bond is a disc of cement of radius R̄ = λ̄ min(R_A, R_B) with area Ā = π R̄²,
+// moment of inertia Ī = π R̄⁴/4 and polar moment J̄ = π R̄⁴/2, and stiffness per unit area
+// k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n/κ̄. Sign convention: the bond normal force is TENSION
+// positive; shear force, twist and bending moments are stored as acting on B (A gets the
+// opposite). Incremental update per step (physics.md §2.3):
+//     F̄_n += k̄_n Ā dU_n,  F̄_s = rot(F̄_s) - k̄_s Ā dU_s,
+//     M̄_t -= k̄_s J̄ dθ_t,  M̄_b = rot(M̄_b) - k̄_n Ī dθ_b.
+// Peak stresses at the periphery (beam theory, β̄ = moment-contribution factor):
+//     σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī,   τ̄ = |F̄_s|/Ā + β̄ |M̄_t| R̄/J̄.
+// Failure: σ̄ >= σ̄_c -> tension; else τ̄ >= τ̄_c = c̄ - σ tan φ̄ with σ = min(F̄_n/Ā, σ̄_c)
+// -> shear. A broken bond carries nothing and is never re-formed.
+#include <cmath>
+#include <cstdint>
+
+#include "core/pair_kinematics.hpp"
+
+namespace gradem {
+
+/// PFC pb_state codes: 0 never bonded, 1 broken in tension, 2 broken in shear, 3 bonded.
+enum class BondState : std::uint8_t { none = 0, broken_tension = 1, broken_shear = 2, intact = 3 };
+
+/// One parallel bond. Stiffnesses come from the World's BondParams (they depend only on the
+/// radii and Ē*); strengths are per bond (drawn at installation).
+struct ParallelBond {
+    std::int32_t i = -1, j = -1;   ///< particle indices, i < j
+    std::int32_t slot = -1;        ///< index of the pair in the World's interaction list
+    BondState state = BondState::intact;
+    double tensile_strength = 0.0; ///< σ̄_c [Pa]
+    double cohesion = 0.0;         ///< c̄ [Pa]
+    double normal_force = 0.0;     ///< F̄_n, tension positive [N]
+    Vec3 shear_force;              ///< F̄_s on j [N]
+    double twist_moment = 0.0;     ///< M̄_t about n, on j [N m]
+    Vec3 bend_moment;              ///< M̄_b on j [N m]
+};
+
+struct BondSection {
+    double radius = 0, area = 0, inertia = 0, polar = 0;  ///< R̄ [m], Ā [m²], Ī, J̄ [m⁴]
+};
+
+inline BondSection bond_section(double radius_multiplier, double ra, double rb) {
+    BondSection s;
+    s.radius = radius_multiplier * (ra < rb ? ra : rb);
+    s.area = kPi * s.radius * s.radius;
+    s.inertia = 0.25 * s.area * s.radius * s.radius;
+    s.polar = 2.0 * s.inertia;
+    return s;
+}
+
+struct BondStiffness {
+    double normal = 0, shear = 0;  ///< k̄_n, k̄_s per unit area [Pa/m]
+};
+
+inline BondStiffness bond_stiffness(double effective_modulus, double stiffness_ratio, double ra,
+                                    double rb) {
+    const double kn = effective_modulus / (ra + rb);
+    return {kn, kn / stiffness_ratio};
+}
+
+struct BondStress {
+    double tensile = 0.0;  ///< σ̄ [Pa], tension positive
+    double shear = 0.0;    ///< τ̄ [Pa]
+    double axial = 0.0;    ///< σ = F̄_n/Ā [Pa]
+};
+
+inline BondStress bond_peak_stress(const ParallelBond& b, const BondSection& s,
+                                   double moment_factor) {
+    BondStress out;
+    out.axial = b.normal_force / s.area;
+    out.tensile = out.axial + moment_factor * norm(b.bend_moment) * s.radius / s.inertia;
+    out.shear = norm(b.shear_force) / s.area +
+                moment_factor * std::fabs(b.twist_moment) * s.radius / s.polar;
+    return out;
+}
+
+/// τ̄_c = c̄ - σ tan φ̄, with σ capped at σ̄_c (PFC linearpbond).
+inline double bond_shear_strength(const ParallelBond& b, double axial_stress, double tan_phi) {
+    const double sigma = axial_stress < b.tensile_strength ? axial_stress : b.tensile_strength;
+    return b.cohesion - sigma * tan_phi;
+}
+
+/// Failure mode for the current stresses: intact, broken_tension or broken_shear.
+inline BondState bond_failure(const ParallelBond& b, const BondStress& s, double tan_phi) {
+    if (s.tensile >= b.tensile_strength) return BondState::broken_tension;
+    if (s.shear >= bond_shear_strength(b, s.axial, tan_phi)) return BondState::broken_shear;
+    return BondState::intact;
+}
+
+/// Advances the bond forces and moments by one step of relative motion.
+inline void update_bond_forces(ParallelBond& b, const BondSection& s, const BondStiffness& k,
+                               const PairKinematics& kin) {
+    b.shear_force = rotate_into_plane(b.shear_force, kin);
+    b.bend_moment = rotate_into_plane(b.bend_moment, kin);
+    b.normal_force += k.normal * s.area * kin.du_normal;
+    b.shear_force -= (k.shear * s.area) * kin.du_shear;
+    b.twist_moment -= k.shear * s.polar * kin.twist_angle;
+    b.bend_moment -= (k.normal * s.inertia) * kin.bend_angle;
+}
+
+/// Breaks the bond: forces and moments vanish at once (PFC linearpbond); never re-formed.
+inline void release_bond(ParallelBond& b, BondState mode) {
+    b.state = mode;
+    b.normal_force = 0.0;
+    b.shear_force = {};
+    b.twist_moment = 0.0;
+    b.bend_moment = {};
+}
+
+/// Elastic energy stored in the bond [J].
+inline double bond_strain_energy(const ParallelBond& b, const BondSection& s,
+                                 const BondStiffness& k) {
+    return 0.5 * (b.normal_force * b.normal_force / (k.normal * s.area) +
+                  norm2(b.shear_force) / (k.shear * s.area) +
+                  b.twist_moment * b.twist_moment / (k.shear * s.polar) +
+                  norm2(b.bend_moment) / (k.normal * s.inertia));
+}
+
+/// Force on j [N] and moment on j [N m] exerted by an intact bond with normal n.
+inline Vec3 bond_force_on_j(const ParallelBond& b, const Vec3& n) {
+    return b.shear_force - b.normal_force * n;
+}
+inline Vec3 bond_moment_on_j(const ParallelBond& b, const Vec3& n) {
+    return b.bend_moment + b.twist_moment * n;
+}
+
+}  // namespace gradem

@@ -1,0 +1,39 @@
+#pragma once
+// Broad phase: which particle pairs are close enough to interact. The World asks for all pairs
+// with a gap no larger than `max_gap` (the Verlet skin) and keeps the answer until particles
+// have moved far enough to invalidate it. Implementations are swappable: the uniform cell grid
+// below suits size ratios up to ~5-10; a multi-level grid (Ogarko & Luding 2012) for wide size
+// ratios plugs in through the same interface without touching the force code.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace gradem {
+
+struct ParticlePair {
+    std::int32_t i = -1, j = -1;  ///< i < j
+    friend bool operator<(const ParticlePair& a, const ParticlePair& b) {
+        return a.i < b.i || (a.i == b.i && a.j < b.j);
+    }
+    friend bool operator==(const ParticlePair& a, const ParticlePair& b) {
+        return a.i == b.i && a.j == b.j;
+    }
+};
+
+class NeighborSearch {
+public:
+    virtual ~NeighborSearch() = default;
+    /// Replaces `pairs` by every pair (i < j) with |x_i - x_j| - r_i - r_j <= max_gap, sorted by
+    /// (i, j). The result must not depend on the number of threads.
+    virtual void find_pairs(const std::vector<Vec3>& position, const std::vector<double>& radius,
+                            double max_gap, std::vector<ParticlePair>& pairs) = 0;
+    [[nodiscard]] virtual std::string name() const = 0;
+};
+
+/// Uniform cell grid with cell edge >= 2 R_max + max_gap; O(N) for bounded size ratios.
+std::unique_ptr<NeighborSearch> make_cell_grid_search();
+
+}  // namespace gradem

@@ -1,0 +1,80 @@
+#pragma once
+// Geometry and relative motion of a particle pair over one step, shared by the linear-contact
+// and parallel-bond kernels. Conventions (physics.md §0): the unit normal n points from A to B;
+// gap g = |x_B - x_A| - R_A - R_B (g < 0 is overlap); the contact point sits in the middle of
+// the gap, x_C = x_A + (R_A + g/2) n. The relative displacement increment of B with respect to
+// A at x_C over the step is
+//     dU = [(v_B + w_B x (x_C - x_B)) - (v_A + w_A x (x_C - x_A))] dt,
+// split into dU_s = dU - (dU.n) n and the normal part. The normal part is taken as the exact
+// change of the centre distance, dU_n = |d| - |d_prev| (positive = opening), which equals dU.n
+// to first order but is objective: a rigid rotation of the pair, however fast, leaves it zero
+// (rotation of spins moves x_C only within the contact plane). The relative rotation
+// increment dθ = (w_B - w_A) dt splits into twist (dθ.n) and bending dθ_b = dθ - (dθ.n) n.
+// Velocities are those that carried the particles to their current positions (leap-frog,
+// half a step behind), so the previous normal is recovered from x - v dt without storing it.
+#include "core/vec3.hpp"
+
+namespace gradem {
+
+struct PairKinematics {
+    Vec3 normal;          ///< n, unit, A -> B
+    Vec3 previous_normal; ///< n one step earlier (from x - v dt)
+    double gap = 0.0;     ///< g [m]
+    Vec3 arm_a;           ///< x_C - x_A [m]
+    Vec3 arm_b;           ///< x_C - x_B [m]
+    Vec3 du_shear;        ///< dU_s [m]
+    double du_normal = 0; ///< dU_n [m], positive = opening
+    double twist_angle = 0;  ///< dθ.n [rad]
+    Vec3 bend_angle;      ///< dθ_b [rad]
+    double mean_twist = 0;   ///< ½ (w_A + w_B).n dt [rad], rotation of the plane about n
+};
+
+struct PairState {
+    Vec3 xa, xb, va, vb, wa, wb;
+    double ra, rb;
+};
+
+inline Vec3 unit_or_x(const Vec3& v) {
+    const double l = norm(v);
+    return l > 0.0 ? (1.0 / l) * v : Vec3{1.0, 0.0, 0.0};
+}
+
+/// Kinematics of pair (A, B) for a step of length dt [s].
+inline PairKinematics pair_kinematics(const PairState& s, double dt) {
+    PairKinematics k;
+    const Vec3 d = s.xb - s.xa;
+    const double dist = norm(d);
+    k.normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0};
+    const Vec3 d_prev = d - dt * (s.vb - s.va);
+    k.previous_normal = unit_or_x(d_prev);
+    k.gap = dist - s.ra - s.rb;
+    k.arm_a = (s.ra + 0.5 * k.gap) * k.normal;
+    k.arm_b = k.arm_a - d;
+    // Spin terms use mid-step lever arms (from the mean of the old and new normals), so the
+    // increment is second-order accurate: a rigid rotation gives O(theta^3) per step, not O(theta^2).
+    const Vec3 arm_a_mid = (s.ra + 0.5 * k.gap) * (0.5 * (k.normal + k.previous_normal));
+    const Vec3 arm_b_mid = arm_a_mid - 0.5 * (d + d_prev);
+    const Vec3 du = dt * ((s.vb + cross(s.wb, arm_b_mid)) - (s.va + cross(s.wa, arm_a_mid)));
+    k.du_shear = du - dot(du, k.normal) * k.normal;
+    k.du_normal = dist - norm(d_prev);
+    const Vec3 dtheta = dt * (s.wb - s.wa);
+    k.twist_angle = dot(dtheta, k.normal);
+    k.bend_angle = dtheta - k.twist_angle * k.normal;
+    k.mean_twist = 0.5 * dt * dot(s.wa + s.wb, k.normal);
+    return k;
+}
+
+/// Carries a vector stored in the old contact plane into the new one: small rotation about
+/// n_old x n_new (the plane tilt), then about n by the mean spin (P&C 2004; YADE ScGeom::rotate),
+/// then re-projection onto the plane with the magnitude restored so rotation causes no drift.
+inline Vec3 rotate_into_plane(const Vec3& v, const PairKinematics& k) {
+    const double magnitude2 = norm2(v);
+    if (magnitude2 == 0.0) return v;
+    Vec3 r = v - cross(v, cross(k.previous_normal, k.normal));
+    r = r - cross(r, k.mean_twist * k.normal);
+    r = r - dot(r, k.normal) * k.normal;
+    const double l2 = norm2(r);
+    return l2 > 0.0 ? std::sqrt(magnitude2 / l2) * r : Vec3{};
+}
+
+}  // namespace gradem

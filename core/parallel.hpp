@@ -1,0 +1,63 @@
+#pragma once
+// Helpers for deterministic OpenMP: work is cut into blocks whose boundaries depend only on
+// the problem size, never on the thread count, and per-block partial results are combined in
+// block order. Floating-point sums therefore come out bitwise identical for any thread count.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gradem {
+
+inline constexpr std::int64_t kBlockSize = 2048;
+
+inline std::int64_t block_count(std::int64_t n) { return (n + kBlockSize - 1) / kBlockSize; }
+
+inline int thread_count() {
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+/// Size of the current team (inside a parallel region).
+inline int team_size() {
+#ifdef _OPENMP
+    return omp_get_num_threads();
+#else
+    return 1;
+#endif
+}
+
+inline int thread_index() {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+
+/// Calls body(begin, end, block) for every fixed block of [0, n), in parallel.
+template <class Body>
+void for_each_block(std::int64_t n, Body&& body) {
+    const std::int64_t blocks = block_count(n);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t b = 0; b < blocks; ++b) {
+        const std::int64_t begin = b * kBlockSize;
+        body(begin, std::min(n, begin + kBlockSize), b);
+    }
+}
+
+/// Sums `partials` in block order (deterministic).
+template <class T>
+T ordered_sum(const std::vector<T>& partials) {
+    T total{};
+    for (const T& p : partials) total += p;
+    return total;
+}
+
+}  // namespace gradem

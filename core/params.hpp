@@ -1,0 +1,60 @@
+#pragma once
+// Parameter structs of the bonded-particle model. Plain structs with documented defaults (SI
+// units) and one validator each, which names the field, its value and the rule it breaks
+// (Ceres' Options::IsValid pattern). Entry points call invalid_reason() once and refuse to run.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace gradem {
+
+/// Linear contact ("linear" part of PFC linearpbond). Deformability form (PFC 5+):
+/// ball-ball k_n = A E*/L with A = pi min(R)^2, L = R_A + R_B; ball-wall k_n = pi R E*;
+/// k_s = k_n / kappa. No tension; Coulomb slip with coefficient `friction`.
+struct ContactParams {
+    double effective_modulus = 1.0e9;  ///< E* [Pa]
+    double stiffness_ratio = 1.5;      ///< kappa* = k_n / k_s [-]
+    double friction = 0.5;             ///< mu, grain-grain Coulomb coefficient [-]
+    [[nodiscard]] std::optional<std::string> invalid_reason() const;
+};
+
+/// Parallel bond (Potyondy & Cundall 2004; PFC linearpbond). Bond stiffness per unit area
+/// k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n / κ̄. Strengths are drawn per bond from normal
+/// distributions truncated to positive values (mean, std), seeded by `seed` and the pair ids.
+struct BondParams {
+    double effective_modulus = 1.0e9;       ///< Ē* [Pa]
+    double stiffness_ratio = 1.5;           ///< κ̄ = k̄_n / k̄_s [-]
+    double radius_multiplier = 1.0;         ///< λ̄, R̄ = λ̄ min(R_A, R_B), in (0, 1] [-]
+    double moment_factor = 1.0;             ///< β̄ (PFC pb_mcf), in [0, 1] [-]
+    double tensile_strength_mean = 10.0e6;  ///< σ̄_c mean [Pa]
+    double tensile_strength_std = 0.0;      ///< σ̄_c standard deviation [Pa]
+    double cohesion_mean = 10.0e6;          ///< c̄ mean [Pa]
+    double cohesion_std = 0.0;              ///< c̄ standard deviation [Pa]
+    double friction_angle_deg = 0.0;        ///< φ̄ [degrees], in [0, 90)
+    std::uint64_t seed = 1;                 ///< strength draws: same seed + pair = same strength
+    [[nodiscard]] std::optional<std::string> invalid_reason() const;
+};
+
+/// Rigid planar wall (platen) contact: linear, k_n = pi R E*_w, k_s = k_n / kappa_w.
+struct WallContactParams {
+    double effective_modulus = 1.0e9;  ///< E*_w [Pa]
+    double stiffness_ratio = 1.5;      ///< kappa_w [-]
+    double friction = 0.0;             ///< mu_w, platen friction [-]
+    [[nodiscard]] std::optional<std::string> invalid_reason() const;
+};
+
+/// Integration and bookkeeping settings of a World.
+struct SimParams {
+    double local_damping = 0.7;      ///< Cundall local non-viscous damping alpha, in [0, 1) [-]
+    double time_step = 0.0;          ///< [s]; 0 = automatic (safety * critical estimate)
+    double time_step_safety = 0.8;   ///< fraction of the critical time step, in (0, 1] [-]
+    double skin_fraction = 0.15;     ///< Verlet skin as a fraction of the minimum radius [-]
+    bool track_energy = true;        ///< energy bookkeeping every step (small cost)
+    double divergence_energy_factor = 10.0;  ///< diverged if E_kin > factor * energy supplied
+    [[nodiscard]] std::optional<std::string> invalid_reason() const;
+};
+
+/// Throws std::invalid_argument with the reason if `reason` holds one.
+void require_valid(const std::optional<std::string>& reason);
+
+}  // namespace gradem

@@ -1,0 +1,164 @@
+#pragma once
+// The World owns the state of one DEM simulation and advances it. World::step() reads as the
+// list of phases of one cycle (as PFC and Box2D's b2World_Step do it):
+//   1. neighbours  - rebuild the Verlet pair list when particles moved more than half the skin;
+//   2. contacts    - linear contact law for every pair, into that pair's own output slot;
+//   3. bonds       - parallel-bond law for every intact bond, added into its pair's slot;
+//   4. walls       - linear contact with each platen, into per-wall-contact slots;
+//   5. gather      - each particle sums its slots in a fixed order into force/torque;
+//   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
+//                    first, then forces at the new configuration, as PFC cycles).
+// Determinism: every interaction is computed once into its own slot, every particle sums its
+// slots in sorted order, reductions go through fixed-size blocks, so the state after N steps
+// is bitwise identical for any number of OpenMP threads. No atomics on forces.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/bond_law.hpp"
+#include "core/neighbor_search.hpp"
+#include "core/params.hpp"
+#include "core/particles.hpp"
+#include "core/wall.hpp"
+#include "core/world_types.hpp"
+
+namespace gradem {
+
+class World {
+public:
+    /// Validates every parameter and particle; throws std::invalid_argument naming the field.
+    World(ParticleSet particles, const ContactParams& contact, const SimParams& sim,
+          std::unique_ptr<NeighborSearch> search = make_cell_grid_search());
+
+    // --- set-up -------------------------------------------------------------------------
+    std::int32_t add_wall(Wall wall);
+    void remove_wall(std::int32_t index);
+    /// Installs a parallel bond at every pair with gap <= max_gap [m] (PFC `bond gap`), at zero
+    /// force in the current geometry, replacing any existing bonds. Returns the bond count.
+    std::size_t install_bonds(const BondParams& params, double max_gap);
+    /// Changes bond stiffness parameters of the existing bonds (strengths stay as drawn).
+    void set_bond_stiffness(double effective_modulus, double stiffness_ratio);
+    void set_contact_params(const ContactParams& contact);
+    /// Fixes the time step [s]; 0 returns to automatic (safety * critical, at every rebuild).
+    void set_time_step(double dt);
+    /// Sets the velocity [m/s] and spin [rad/s] a particle moves with over the next step (for
+    /// prescribed motion of kFixedVelocity / kFixedSpin particles); keeps all histories.
+    void set_particle_motion(std::int32_t i, const Vec3& velocity, const Vec3& spin);
+    /// Particle state for editing (set-up only); forces a neighbour rebuild.
+    ParticleSet& edit_particles();
+    Wall& wall(std::int32_t index) { return walls_[static_cast<std::size_t>(index)]; }
+
+    // --- stepping -----------------------------------------------------------------------
+    RunStatus step();
+    RunStatus run(std::int64_t steps);
+
+    // --- queries ------------------------------------------------------------------------
+    [[nodiscard]] const ParticleSet& particles() const { return particles_; }
+    [[nodiscard]] const std::vector<ParallelBond>& bonds() const { return bonds_; }
+    [[nodiscard]] const std::vector<Wall>& walls() const { return walls_; }
+    [[nodiscard]] const EnergyLedger& energy() const { return energy_; }
+    [[nodiscard]] const std::vector<BreakEvent>& break_events() const { return breaks_; }
+    [[nodiscard]] const StepProfile& profile() const { return profile_; }
+    [[nodiscard]] RunStatus status() const { return status_; }
+    [[nodiscard]] const std::string& status_reason() const { return status_reason_; }
+    [[nodiscard]] std::int64_t step_count() const { return step_; }
+    [[nodiscard]] double time() const { return time_; }
+    [[nodiscard]] double time_step();
+    /// min over particles of sqrt(m/k_tran), sqrt(I/k_rot) with stiffnesses summed over every
+    /// neighbour pair, bond and wall contact (PFC "Timestep Determination"), without safety.
+    [[nodiscard]] double critical_time_step();
+    [[nodiscard]] const ContactParams& contact_params() const { return contact_; }
+    [[nodiscard]] const BondParams& bond_params() const { return bond_params_; }
+    [[nodiscard]] const SimParams& sim_params() const { return sim_; }
+    [[nodiscard]] std::size_t intact_bond_count() const;
+    [[nodiscard]] std::size_t pair_count() const { return pairs_.size(); }
+    [[nodiscard]] std::size_t active_contact_count() const;
+    /// Bytes held by the particle, pair, bond and wall-contact arrays (capacity, not size).
+    [[nodiscard]] std::size_t memory_bytes() const;
+    /// Hash of positions, velocities, spins and bond forces (FNV-1a over the raw bits).
+    [[nodiscard]] std::uint64_t state_hash() const;
+
+private:
+    /// A Verlet pair: persistent shear history of the linear contact, and its bond if any.
+    struct Pair {
+        std::int32_t i = -1, j = -1;
+        std::int32_t bond = -1;  ///< index into bonds_, -1 if none
+        Vec3 shear_force;        ///< linear part, force on j [N]
+    };
+    /// What a pair exerts this step: force on j, moment on j; i gets -force and
+    /// -torque_j - (x_j - x_i) x force (angular momentum balance).
+    struct PairOutput {
+        Vec3 force_j, torque_j;
+    };
+    struct WallOutput {
+        Vec3 force, torque;  ///< on the particle
+    };
+    struct Incidence {
+        std::int32_t slot;     ///< pair index
+        std::int32_t partner;  ///< the other particle; sign bit set when this particle is i
+    };
+
+    ParticleSet particles_;
+    ContactParams contact_;
+    BondParams bond_params_;
+    SimParams sim_;
+    std::unique_ptr<NeighborSearch> search_;
+
+    std::vector<Pair> pairs_;
+    std::vector<PairOutput> pair_out_;
+    std::vector<std::int32_t> incidence_start_;
+    std::vector<Incidence> incidence_;
+    std::vector<ParallelBond> bonds_;
+    std::vector<Wall> walls_;
+    std::vector<WallContact> wall_contacts_;
+    std::vector<WallOutput> wall_out_;
+    std::vector<std::int32_t> wall_start_;
+    std::vector<Vec3> position_at_rebuild_;
+    std::vector<Vec3> wall_shift_since_rebuild_;
+    std::vector<Vec3> wall_previous_reaction_;
+    std::vector<Vec3> wall_last_step_;
+
+    std::vector<BreakEvent> breaks_;
+    EnergyLedger energy_;
+    StepProfile profile_;
+    RunStatus status_ = RunStatus::running;
+    std::string status_reason_;
+    std::int64_t step_ = 0;
+    double time_ = 0.0;
+    double dt_ = 0.0;
+    double skin_ = 0.0;
+    double max_displacement_ = 0.0;
+    bool rebuild_needed_ = true;
+
+    /// Energy terms of the latest force evaluation.
+    struct ForceEvaluation {
+        double contact_strain = 0, bond_strain = 0, slip = 0, released = 0;
+    };
+    ForceEvaluation last_eval_;
+    bool forces_current_ = false;
+
+    // Phases of step(), in order (world_step.cpp). `dt` is the time over which the current
+    // velocities moved the particles here (0 for a fresh evaluation after set-up).
+    [[nodiscard]] bool needs_rebuild() const;
+    void evaluate_forces(double increment_dt, class Stopwatch& clock);
+    void compute_contacts(double dt, double& strain, double& slip);
+    void compute_bonds(double dt, double& strain, double& released);
+    void compute_wall_contacts(double dt, double& strain, double& slip);
+    struct IntegrationSums {
+        double kinetic = 0, damping = 0, boundary = 0, max_disp2 = 0;
+        std::int64_t runaway = -1;  ///< a particle that moved too far or went non-finite
+    };
+    void gather_forces();
+    IntegrationSums integrate();
+    void move_walls(double& boundary_work);
+    void check_divergence(const IntegrationSums& sums);
+
+    // Neighbour bookkeeping (world_neighbors.cpp).
+    void rebuild_neighbors();
+    void merge_pairs(const std::vector<ParticlePair>& found);
+    void build_incidence();
+    void build_wall_contacts();
+};
+
+}  // namespace gradem

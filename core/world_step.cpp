@@ -1,0 +1,216 @@
+// One DEM cycle (see world.hpp for the phase list and the determinism argument).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/contact_law.hpp"
+#include "core/parallel.hpp"
+#include "core/world.hpp"
+
+namespace gradem {
+namespace {
+
+}  // namespace
+
+class Stopwatch {
+public:
+    double lap() {
+        const auto now = std::chrono::steady_clock::now();
+        const double s = std::chrono::duration<double>(now - last_).count();
+        last_ = now;
+        return s;
+    }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+namespace {
+
+struct EnergyPair {
+    double stored = 0.0, dissipated = 0.0;
+    EnergyPair& operator+=(const EnergyPair& o) {
+        stored += o.stored;
+        dissipated += o.dissipated;
+        return *this;
+    }
+};
+
+}  // namespace
+
+// Motion first, then forces at the new configuration (PFC's cycle): after step() the positions,
+// contact and bond forces and wall reactions all describe the same instant. The energy ledger
+// describes the start of the step (where the leap-frog kinetic energy is defined).
+RunStatus World::step() {
+    if (status_ != RunStatus::running) return status_;
+    Stopwatch clock;
+    if (!forces_current_) {  // fresh set-up: evaluate at rest, no motion increments yet
+        if (needs_rebuild()) rebuild_neighbors();
+        (void)time_step();
+        profile_.neighbors += clock.lap();
+        evaluate_forces(0.0, clock);
+        gather_forces();
+        profile_.integrate += clock.lap();
+        forces_current_ = true;
+    }
+    const IntegrationSums sums = integrate();
+    double wall_work = 0.0;
+    move_walls(wall_work);
+    profile_.integrate += clock.lap();
+
+    energy_.kinetic = sums.kinetic;
+    energy_.strain_contact = last_eval_.contact_strain;
+    energy_.strain_bond = last_eval_.bond_strain;
+    energy_.friction += last_eval_.slip;
+    energy_.bond_break += last_eval_.released;
+    energy_.damping += sums.damping;
+    energy_.boundary_work += sums.boundary + wall_work;
+    if (step_ == 0) energy_.reference = energy_.total();
+    check_divergence(sums);
+    ++step_;
+    time_ += dt_;
+
+    if (needs_rebuild()) rebuild_neighbors();
+    profile_.neighbors += clock.lap();
+    evaluate_forces(dt_, clock);
+    gather_forces();
+    profile_.integrate += clock.lap();
+    return status_;
+}
+
+void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
+    ForceEvaluation e;
+    double contact_slip = 0, wall_strain = 0, wall_slip = 0;
+    compute_contacts(increment_dt, e.contact_strain, contact_slip);
+    profile_.contacts += clock.lap();
+    compute_bonds(increment_dt, e.bond_strain, e.released);
+    profile_.bonds += clock.lap();
+    compute_wall_contacts(increment_dt, wall_strain, wall_slip);
+    profile_.walls += clock.lap();
+    e.contact_strain += wall_strain;
+    e.slip = contact_slip + wall_slip;
+    last_eval_ = e;
+}
+
+// Phase 2: linear contact law for every Verlet pair, one output slot each.
+void World::compute_contacts(double dt, double& strain, double& slip) {
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(m)));
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        EnergyPair e;
+        for (std::int64_t k = begin; k < end; ++k) {
+            Pair& p = pairs_[static_cast<std::size_t>(k)];
+            const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
+            const PairState s{particles_.position[i], particles_.position[j],
+                              particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
+                              particles_.spin[j], particles_.radius[i], particles_.radius[j]};
+            PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
+            const Vec3 d = s.xb - s.xa;
+            if (norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb)) {  // open: carries nothing
+                p.shear_force = {};
+                out = {};
+                continue;
+            }
+            const PairKinematics kin = pair_kinematics(s, dt);
+            const double kn = contact_normal_stiffness(contact_.effective_modulus, s.ra, s.rb);
+            const LinearContactResult r =
+                linear_contact(kn, kn / contact_.stiffness_ratio, contact_.friction, kin.gap,
+                               rotate_into_plane(p.shear_force, kin), kin.du_shear);
+            p.shear_force = r.shear_force;
+            out.force_j = r.normal_force * kin.normal + r.shear_force;
+            out.torque_j = cross(kin.arm_b, out.force_j);
+            e.stored += r.strain_energy;
+            e.dissipated += r.slip_energy;
+        }
+        partial[static_cast<std::size_t>(blk)] = e;
+    });
+    const EnergyPair total = ordered_sum(partial);
+    strain = total.stored;
+    slip = total.dissipated;
+}
+
+// Phase 3: parallel bonds, added into their pair's slot. Breaks are logged per thread and
+// merged in bond order, so the event list is the same for any thread count.
+void World::compute_bonds(double dt, double& strain, double& released) {
+    const auto nb = static_cast<std::int64_t>(bonds_.size());
+    std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(nb)));
+    std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
+    const double tan_phi = std::tan(bond_params_.friction_angle_deg * kPi / 180.0);
+    for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        EnergyPair e;
+        for (std::int64_t k = begin; k < end; ++k) {
+            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+            if (b.state != BondState::intact) continue;
+            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+            const PairState s{particles_.position[i], particles_.position[j],
+                              particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
+                              particles_.spin[j], particles_.radius[i], particles_.radius[j]};
+            const PairKinematics kin = pair_kinematics(s, dt);
+            const BondSection sec = bond_section(bond_params_.radius_multiplier, s.ra, s.rb);
+            const BondStiffness stiff = bond_stiffness(bond_params_.effective_modulus,
+                                                       bond_params_.stiffness_ratio, s.ra, s.rb);
+            update_bond_forces(b, sec, stiff, kin);
+            const BondStress stress = bond_peak_stress(b, sec, bond_params_.moment_factor);
+            const BondState failure = bond_failure(b, stress, tan_phi);
+            if (failure != BondState::intact) {
+                e.dissipated += bond_strain_energy(b, sec, stiff);
+                broken[static_cast<std::size_t>(blk)].push_back(
+                    {step_, time_, static_cast<std::int32_t>(k), b.i, b.j, failure,
+                     s.xa + kin.arm_a, kin.normal, sec.radius, stress.tensile, stress.shear});
+                release_bond(b, failure);
+                continue;
+            }
+            e.stored += bond_strain_energy(b, sec, stiff);
+            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
+            const Vec3 f = bond_force_on_j(b, kin.normal);
+            out.force_j += f;
+            out.torque_j += cross(kin.arm_b, f) + bond_moment_on_j(b, kin.normal);
+        }
+        partial[static_cast<std::size_t>(blk)] = e;
+    });
+    for (auto& list : broken) breaks_.insert(breaks_.end(), list.begin(), list.end());
+    const EnergyPair total = ordered_sum(partial);
+    strain = total.stored;
+    released = total.dissipated;
+}
+
+// Phase 4: particle-wall contacts (linear, ball-facet stiffness), the wall playing particle A.
+void World::compute_wall_contacts(double dt, double& strain, double& slip) {
+    const auto m = static_cast<std::int64_t>(wall_contacts_.size());
+    std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(m)));
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        EnergyPair e;
+        for (std::int64_t k = begin; k < end; ++k) {
+            WallContact& c = wall_contacts_[static_cast<std::size_t>(k)];
+            const Wall& w = walls_[static_cast<std::size_t>(c.wall)];
+            const auto i = static_cast<std::size_t>(c.particle);
+            const double r = particles_.radius[i];
+            const double gap = dot(w.normal, particles_.position[i] - w.point) - r;
+            WallOutput& out = wall_out_[static_cast<std::size_t>(k)];
+            if (gap >= 0.0) {
+                c.shear_force = {};
+                out = {};
+                continue;
+            }
+            const Vec3 arm = -(r + 0.5 * gap) * w.normal;  // particle centre -> contact point
+            const Vec3 du = dt * (particles_.velocity[i] + cross(particles_.spin[i], arm) - w.velocity);
+            const Vec3 du_shear = du - dot(du, w.normal) * w.normal;
+            const Vec3 stored = c.shear_force - dot(c.shear_force, w.normal) * w.normal;
+            const double kn = wall_normal_stiffness(w.contact.effective_modulus, r);
+            const LinearContactResult res = linear_contact(
+                kn, kn / w.contact.stiffness_ratio, w.contact.friction, gap, stored, du_shear);
+            c.shear_force = res.shear_force;
+            out.force = res.normal_force * w.normal + res.shear_force;
+            out.torque = cross(arm, out.force);
+            e.stored += res.strain_energy;
+            e.dissipated += res.slip_energy;
+        }
+        partial[static_cast<std::size_t>(blk)] = e;
+    });
+    const EnergyPair total = ordered_sum(partial);
+    strain = total.stored;
+    slip = total.dissipated;
+}
+
+}  // namespace gradem

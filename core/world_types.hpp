@@ -1,0 +1,54 @@
+#pragma once
+// Value types the World reports: run status, energy ledger, crack events, per-phase timings.
+#include <cstdint>
+#include <string>
+
+#include "core/bond_law.hpp"
+#include "core/vec3.hpp"
+
+namespace gradem {
+
+enum class RunStatus : std::uint8_t { running, diverged };
+
+/// Energy bookkeeping (PFC-style). State terms are values at the current step; the others are
+/// cumulative since the first step. Balance: kinetic + strain + dissipated - boundary work is
+/// constant (= its value at the first step) up to the time-discretisation error.
+struct EnergyLedger {
+    double kinetic = 0.0;        ///< ½ m v(t-½).v(t+½) + ½ I w.w: the leap-frog invariant [J]
+    double strain_contact = 0.0; ///< linear springs, grain-grain and grain-wall [J]
+    double strain_bond = 0.0;    ///< parallel bonds [J]
+    double damping = 0.0;        ///< dissipated by local damping, cumulative, >= 0 [J]
+    double friction = 0.0;       ///< dissipated by Coulomb slip, cumulative, >= 0 [J]
+    double bond_break = 0.0;     ///< strain energy released by broken bonds, cumulative [J]
+    double boundary_work = 0.0;  ///< work done on the particles by walls and prescribed particles [J]
+    double reference = 0.0;      ///< total at the first step
+
+    [[nodiscard]] double total() const {
+        return kinetic + strain_contact + strain_bond + damping + friction + bond_break -
+               boundary_work;
+    }
+    /// total() - reference: zero for an exact integrator.
+    [[nodiscard]] double balance_error() const { return total() - reference; }
+};
+
+/// A bond break: one crack (physics.md §8).
+struct BreakEvent {
+    std::int64_t step = 0;
+    double time = 0.0;          ///< [s]
+    std::int32_t bond = -1, i = -1, j = -1;
+    BondState mode = BondState::broken_tension;
+    Vec3 position;              ///< contact point [m]
+    Vec3 normal;                ///< unit normal i -> j
+    double bond_radius = 0.0;   ///< R̄ [m]
+    double tensile_stress = 0.0;  ///< σ̄ at break [Pa]
+    double shear_stress = 0.0;    ///< τ̄ at break [Pa]
+};
+
+/// Wall-clock seconds spent per phase, cumulative.
+struct StepProfile {
+    double neighbors = 0.0, contacts = 0.0, bonds = 0.0, walls = 0.0, integrate = 0.0;
+    std::int64_t rebuilds = 0;
+    [[nodiscard]] double total() const { return neighbors + contacts + bonds + walls + integrate; }
+};
+
+}  // namespace gradem
