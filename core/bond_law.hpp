@@ -35,16 +35,24 @@ struct ParallelBond {
     Vec3 bend_moment;              ///< M̄_b on j [N m]
 };
 
+/// Bond cross-section; reciprocals are kept so the per-step kernel needs one division.
 struct BondSection {
     double radius = 0, area = 0, inertia = 0, polar = 0;  ///< R̄ [m], Ā [m²], Ī, J̄ [m⁴]
+    double inv_area = 0;             ///< 1/Ā [1/m²]
+    double radius_over_inertia = 0;  ///< R̄/Ī [1/m³]
+    double radius_over_polar = 0;    ///< R̄/J̄ [1/m³]
 };
 
 inline BondSection bond_section(double radius_multiplier, double ra, double rb) {
     BondSection s;
     s.radius = radius_multiplier * (ra < rb ? ra : rb);
+    const double inv_r = 1.0 / s.radius;
     s.area = kPi * s.radius * s.radius;
     s.inertia = 0.25 * s.area * s.radius * s.radius;
     s.polar = 2.0 * s.inertia;
+    s.inv_area = inv_r * inv_r * (1.0 / kPi);
+    s.radius_over_inertia = 4.0 * s.inv_area * inv_r;
+    s.radius_over_polar = 0.5 * s.radius_over_inertia;
     return s;
 }
 
@@ -67,10 +75,10 @@ struct BondStress {
 inline BondStress bond_peak_stress(const ParallelBond& b, const BondSection& s,
                                    double moment_factor) {
     BondStress out;
-    out.axial = b.normal_force / s.area;
-    out.tensile = out.axial + moment_factor * norm(b.bend_moment) * s.radius / s.inertia;
-    out.shear = norm(b.shear_force) / s.area +
-                moment_factor * std::fabs(b.twist_moment) * s.radius / s.polar;
+    out.axial = b.normal_force * s.inv_area;
+    out.tensile = out.axial + moment_factor * norm(b.bend_moment) * s.radius_over_inertia;
+    out.shear = norm(b.shear_force) * s.inv_area +
+                moment_factor * std::fabs(b.twist_moment) * s.radius_over_polar;
     return out;
 }
 
@@ -110,10 +118,13 @@ inline void release_bond(ParallelBond& b, BondState mode) {
 /// Elastic energy stored in the bond [J].
 inline double bond_strain_energy(const ParallelBond& b, const BondSection& s,
                                  const BondStiffness& k) {
-    return 0.5 * (b.normal_force * b.normal_force / (k.normal * s.area) +
-                  norm2(b.shear_force) / (k.shear * s.area) +
-                  b.twist_moment * b.twist_moment / (k.shear * s.polar) +
-                  norm2(b.bend_moment) / (k.normal * s.inertia));
+    // 1/I = (R/I)/R and 1/J = 1/(2I): one division for the four compliances.
+    const double inv_inertia = s.radius_over_inertia * s.inv_area * kPi * s.radius;
+    const double normal_part = b.normal_force * b.normal_force * s.inv_area +
+                               norm2(b.bend_moment) * inv_inertia;
+    const double shear_part = norm2(b.shear_force) * s.inv_area +
+                              b.twist_moment * b.twist_moment * 0.5 * inv_inertia;
+    return 0.5 * (normal_part / k.normal + shear_part / k.shear);
 }
 
 /// Force on j [N] and moment on j [N m] exerted by an intact bond with normal n.

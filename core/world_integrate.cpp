@@ -89,8 +89,8 @@ World::IntegrationSums World::integrate() {
             s.damping -= 0.5 * dt * (dot(fd, v0 + v1) + dot(td, w0 + w1));
             const double moved2 = norm2(P.position[i] - position_at_rebuild_[i]);
             s.max_disp2 = std::max(s.max_disp2, moved2);
-            const double step_len = dt * norm(v1);
-            if (s.runaway < 0 && (!(step_len <= 0.5 * P.radius[i]) || !is_finite(w1)))
+            const double step_len2 = dt * dt * norm2(v1), limit = 0.5 * P.radius[i];
+            if (s.runaway < 0 && (!(step_len2 <= limit * limit) || !is_finite(w1)))
                 s.runaway = p;
         }
         partial[static_cast<std::size_t>(blk)] = s;

@@ -137,6 +137,7 @@ void World::compute_bonds(double dt, double& strain, double& released) {
     std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(nb)));
     std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
     const double tan_phi = std::tan(bond_params_.friction_angle_deg * kPi / 180.0);
+    const bool track = sim_.track_energy;
     for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         EnergyPair e;
         for (std::int64_t k = begin; k < end; ++k) {
@@ -154,14 +155,14 @@ void World::compute_bonds(double dt, double& strain, double& released) {
             const BondStress stress = bond_peak_stress(b, sec, bond_params_.moment_factor);
             const BondState failure = bond_failure(b, stress, tan_phi);
             if (failure != BondState::intact) {
-                e.dissipated += bond_strain_energy(b, sec, stiff);
+                if (track) e.dissipated += bond_strain_energy(b, sec, stiff);
                 broken[static_cast<std::size_t>(blk)].push_back(
                     {step_, time_, static_cast<std::int32_t>(k), b.i, b.j, failure,
                      s.xa + kin.arm_a, kin.normal, sec.radius, stress.tensile, stress.shear});
                 release_bond(b, failure);
                 continue;
             }
-            e.stored += bond_strain_energy(b, sec, stiff);
+            if (track) e.stored += bond_strain_energy(b, sec, stiff);
             PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
             const Vec3 f = bond_force_on_j(b, kin.normal);
             out.force_j += f;

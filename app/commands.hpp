@@ -1,0 +1,21 @@
+#pragma once
+// The subcommands of the `gradem` executable. Each takes the arguments after its name and
+// returns the process exit code; bad usage throws UsageError (exit 2).
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gradem::app {
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Parses an integer option value in [lo, hi]; UsageError naming the option otherwise.
+std::int64_t parse_int(const std::string& option, const std::string& value, std::int64_t lo,
+                       std::int64_t hi);
+
+int run_quick_cube(const std::vector<std::string>& args);
+
+}  // namespace gradem::app

@@ -1,0 +1,64 @@
+// gradem: command-line entry point. Dispatches to the subcommands; every error ends with a
+// message on stderr and a non-zero exit code (2 usage or input, 3 a diverged simulation).
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "lab_data/lab_command.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: gradem <command> [options]\n"
+    "commands:\n"
+    "  lab <dataset folder | export files...>   lab statistics from sieve and load-frame files\n"
+    "  quick-cube [--particles N] [--seed S] [--strain-rate R] [--out DIR]\n"
+    "                                          bonded cube compressed to past its peak\n"
+    "  --help, --version\n";
+
+}  // namespace
+
+namespace gradem::app {
+
+std::int64_t parse_int(const std::string& option, const std::string& value, std::int64_t lo,
+                       std::int64_t hi) {
+    std::size_t used = 0;
+    long long v = 0;
+    try {
+        v = std::stoll(value, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != value.size() || v < lo || v > hi)
+        throw UsageError(option + " = '" + value + "': expected an integer in [" +
+                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+}
+
+}  // namespace gradem::app
+
+int main(int argc, char** argv) {
+    const std::vector<std::string> all(argv + 1, argv + argc);
+    if (all.empty() || all[0] == "--help" || all[0] == "-h") {
+        std::cout << kUsage;
+        return all.empty() ? 2 : 0;
+    }
+    if (all[0] == "--version") {
+        std::cout << "gradem " << GRADEM_VERSION << "\n";
+        return 0;
+    }
+    const std::vector<std::string> rest(all.begin() + 1, all.end());
+    try {
+        if (all[0] == "lab") return gradem::lab::run_lab_command(rest);
+        if (all[0] == "quick-cube") return gradem::app::run_quick_cube(rest);
+        throw gradem::app::UsageError("unknown command '" + all[0] + "'");
+    } catch (const gradem::app::UsageError& e) {
+        std::cerr << "gradem: " << e.what() << "\n" << kUsage;
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "gradem: " << e.what() << "\n";
+        return 2;
+    }
+}

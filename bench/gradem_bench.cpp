@@ -1,0 +1,202 @@
+// gradem-bench: throughput of the DEM core on a dense bonded polydisperse packing (radius ratio
+// 3, every initial near-contact bonded, ~2.5 bonds per particle) compressed between moving
+// platens. Prints, per size and thread count: N, bonds, steps, wall seconds, particle-steps per
+// second, per-phase times, bytes per particle (World arrays and peak RSS), and the 1 -> 2 thread
+// speed-up. Not a test: numbers depend on the machine; quote medians of several runs.
+//
+//   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/world.hpp"
+#include "experiments/platen_compression.hpp"
+#include "experiments/quick_packing.hpp"
+
+using namespace gradem;
+
+namespace {
+
+struct Options {
+    std::vector<std::int64_t> sizes{20000, 200000};
+    std::vector<int> threads{1, 2};
+    std::int64_t steps = 1000;
+    int repeat = 3;
+    bool json = false;
+};
+
+template <class T>
+std::vector<T> parse_list(const std::string& s) {
+    std::vector<T> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ',')) out.push_back(static_cast<T>(std::stod(item)));
+    return out;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int k = 1; k < argc; ++k) {
+        const std::string a = argv[k];
+        auto value = [&]() -> std::string {
+            if (k + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+            return argv[++k];
+        };
+        if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value());
+        else if (a == "--threads") o.threads = parse_list<int>(value());
+        else if (a == "--steps") o.steps = std::stoll(value());
+        else if (a == "--repeat") o.repeat = std::stoi(value());
+        else if (a == "--json") o.json = true;
+        else if (a == "--help" || a == "-h") {
+            std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
+                         "[--repeat R] [--json]\n";
+            std::exit(0);
+        } else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
+    }
+    if (o.steps < 1 || o.repeat < 1 || o.sizes.empty() || o.threads.empty())
+        throw std::invalid_argument("--steps, --repeat, --sizes and --threads must be positive");
+    return o;
+}
+
+// Peak resident set size of this process [bytes] (VmHWM).
+std::size_t peak_rss_bytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+    return 0;
+}
+
+struct Sample {
+    std::int64_t n = 0, bonds = 0, steps = 0;
+    int threads = 1;
+    double seconds = 0, build_seconds = 0;
+    StepProfile profile;
+    std::size_t world_bytes = 0, rss = 0;
+    std::int64_t contacts = 0, pairs = 0;
+};
+
+// A bonded packing between platens closing at a strain rate of 1/s (typical test speed).
+World make_world(const exp::QuickPacking& packing) {
+    ContactParams contact;
+    contact.effective_modulus = 10.0e9;
+    contact.stiffness_ratio = 1.5;
+    contact.friction = 0.5;
+    World world(packing.particles, contact, SimParams{});
+    BondParams bond;
+    bond.effective_modulus = 10.0e9;
+    bond.tensile_strength_mean = 8.0e6;
+    bond.tensile_strength_std = 1.6e6;
+    bond.cohesion_mean = 16.0e6;
+    bond.cohesion_std = 3.2e6;
+    world.install_bonds(bond, packing.bond_gap);
+    exp::add_platens(world, 0.5);
+    const double height = world.walls()[1].point.z - world.walls()[0].point.z;
+    world.wall(0).velocity = {0, 0, 0.5 * height};
+    world.wall(1).velocity = {0, 0, -0.5 * height};
+    return world;
+}
+
+Sample run_once(const exp::QuickPacking& packing, int threads, std::int64_t steps) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    Sample s;
+    const auto t0 = std::chrono::steady_clock::now();
+    World world = make_world(packing);
+    world.run(20);  // first neighbour build, time step, caches warm
+    const auto t1 = std::chrono::steady_clock::now();
+    const StepProfile before = world.profile();
+    world.run(steps);
+    const auto t2 = std::chrono::steady_clock::now();
+    s.n = static_cast<std::int64_t>(world.particles().size());
+    s.bonds = static_cast<std::int64_t>(world.intact_bond_count());
+    s.steps = steps;
+    s.threads = threads;
+    s.build_seconds = std::chrono::duration<double>(t1 - t0).count();
+    s.seconds = std::chrono::duration<double>(t2 - t1).count();
+    const StepProfile& after = world.profile();
+    s.profile.neighbors = after.neighbors - before.neighbors;
+    s.profile.contacts = after.contacts - before.contacts;
+    s.profile.bonds = after.bonds - before.bonds;
+    s.profile.walls = after.walls - before.walls;
+    s.profile.integrate = after.integrate - before.integrate;
+    s.profile.rebuilds = after.rebuilds - before.rebuilds;
+    s.world_bytes = world.memory_bytes();
+    s.rss = peak_rss_bytes();
+    s.pairs = static_cast<std::int64_t>(world.pair_count());
+    s.contacts = static_cast<std::int64_t>(world.active_contact_count());
+    if (world.status() != RunStatus::running)
+        std::cerr << "warning: run diverged: " << world.status_reason() << "\n";
+    return s;
+}
+
+Sample median_of(std::vector<Sample> runs) {
+    std::sort(runs.begin(), runs.end(), [](const Sample& a, const Sample& b) { return a.seconds < b.seconds; });
+    return runs[runs.size() / 2];
+}
+
+void print_sample(const Sample& s, double speedup, bool json) {
+    const double pss = static_cast<double>(s.n) * static_cast<double>(s.steps) / s.seconds;
+    const double per = static_cast<double>(s.n);
+    if (json) {
+        std::printf("{\"n\": %lld, \"bonds\": %lld, \"pairs\": %lld, \"contacts\": %lld, \"threads\": %d, "
+                    "\"steps\": %lld, \"seconds\": %.4f, \"particle_steps_per_s\": %.4g, "
+                    "\"neighbors_s\": %.4f, \"contacts_s\": %.4f, \"bonds_s\": %.4f, \"walls_s\": %.4f, "
+                    "\"integrate_s\": %.4f, \"rebuilds\": %lld, \"bytes_per_particle\": %.1f, "
+                    "\"peak_rss_bytes_per_particle\": %.1f, \"speedup_vs_1_thread\": %.3f}\n",
+                    static_cast<long long>(s.n), static_cast<long long>(s.bonds),
+                    static_cast<long long>(s.pairs), static_cast<long long>(s.contacts), s.threads,
+                    static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
+                    s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
+                    static_cast<long long>(s.profile.rebuilds), static_cast<double>(s.world_bytes) / per,
+                    static_cast<double>(s.rss) / per, speedup);
+        return;
+    }
+    std::printf("%9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f\n",
+                static_cast<long long>(s.n), static_cast<long long>(s.bonds), s.threads,
+                static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
+                s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
+                static_cast<double>(s.world_bytes) / per, static_cast<double>(s.rss) / per, speedup);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        const Options o = parse(argc, argv);
+        if (!o.json) {
+            std::printf("gradem-bench: bonded packing (radius ratio 3) between closing platens; "
+                        "median of %d runs\n", o.repeat);
+            std::printf("%9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s\n", "N",
+                        "bonds", "thr", "steps", "seconds", "p-steps/s", "neigh", "contact",
+                        "bonds", "walls", "integr", "B/p", "RSS/p", "speedup");
+        }
+        for (std::int64_t n : o.sizes) {
+            exp::QuickPackingSpec spec;
+            spec.target_count = n;
+            const exp::QuickPacking packing = exp::make_quick_packing(spec);
+            double base_seconds = 0.0;
+            for (int t : o.threads) {
+                std::vector<Sample> runs;
+                for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(packing, t, o.steps));
+                const Sample m = median_of(runs);
+                if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
+                const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
+                print_sample(m, speedup, o.json);
+                std::fflush(stdout);
+            }
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "gradem-bench: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}
