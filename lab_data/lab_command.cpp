@@ -1,0 +1,151 @@
+#include "lab_data/lab_command.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include "lab_data/input_error.hpp"
+#include "lab_data/lab_output.hpp"
+#include "lab_data/text.hpp"
+
+namespace gradem::lab {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct CommandLine {
+    std::vector<std::string> inputs;
+    fs::path out = "lab_out";
+    bool write = true, json = false, per_cube = false;
+    std::optional<fs::path> config;
+    std::optional<std::string> format;
+    std::vector<std::pair<std::string, std::string>> columns, units;
+};
+
+std::pair<std::string, std::string> role_value(const std::string& opt, const std::string& arg) {
+    const auto eq = arg.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError(opt + " expects ROLE=VALUE, got '" + arg + "'");
+    return {arg.substr(0, eq), arg.substr(eq + 1)};
+}
+
+CommandLine parse(const std::vector<std::string>& args) {
+    CommandLine c;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "--out") c.out = value();
+        else if (a == "--no-write") c.write = false;
+        else if (a == "--json") c.json = true;
+        else if (a == "--cubes") c.per_cube = true;
+        else if (a == "--config") c.config = value();
+        else if (a == "--format") c.format = value();
+        else if (a == "--column") c.columns.push_back(role_value(a, value()));
+        else if (a == "--unit") c.units.push_back(role_value(a, value()));
+        else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else c.inputs.push_back(a);
+    }
+    if (c.inputs.empty()) throw UsageError("no input: give a dataset folder, a dataset .toml, or export files");
+    return c;
+}
+
+bool is_dataset(const std::string& input) {
+    std::error_code ec;
+    return fs::is_directory(input, ec) || fs::path(input).extension() == ".toml";
+}
+
+DatasetConfig options_for_files(const CommandLine& c) {
+    DatasetConfig config = c.config ? load_dataset_config(*c.config, false) : DatasetConfig{};
+    if (c.format) {
+        const auto f = parse_format_name(*c.format);
+        if (!f) throw UsageError("--format '" + *c.format + "': expected auto, mts-testsuite, mts793, instron-bluehill or plain-csv");
+        config.read.format = *f;
+    }
+    for (const auto& [role, name] : c.columns) {
+        const auto r = parse_role(role);
+        if (!r) throw UsageError("--column: unknown role '" + role + "' (time, load, crosshead, strain, lateral_strain, stress)");
+        config.read.channels.column[*r] = name;
+    }
+    for (const auto& [role, unit] : c.units) {
+        const auto r = parse_role(role);
+        if (!r) throw UsageError("--unit: unknown role '" + role + "'");
+        config.read.channels.unit[*r] = unit;
+    }
+    return config;
+}
+
+LabStats analyse(const CommandLine& c) {
+    if (is_dataset(c.inputs.front())) {
+        if (c.inputs.size() > 1) throw UsageError("a dataset folder or .toml must be the only input");
+        if (c.config || c.format || !c.columns.empty() || !c.units.empty())
+            throw UsageError("--config/--format/--column/--unit apply to export files; a dataset sets them in its TOML");
+        return analyse_lab_dataset(c.inputs.front());
+    }
+    std::vector<fs::path> files(c.inputs.begin(), c.inputs.end());
+    return analyse_lab_files(files, options_for_files(c));
+}
+
+}  // namespace
+
+const char* lab_command_usage() {
+    return R"(usage: gradem lab [options] <dataset folder | dataset.toml | export file...>
+
+Reads lab data and reduces it to the statistics calibration uses.
+  dataset folder (holding dataset.toml) or a .toml file:
+      sieve analyses and cube exports by sand and batch -> Table 2 (gradation, D-values,
+      Cu, Cc, USCS, fineness modulus, ASTM C144 verdicts) and Table 4-style statistics
+      (ASTM C109 strength, strain at peak, ASTM C469 chord modulus), Welch t-tests
+      between sands, ASTM C109 permissible-range flags.
+  export files (MTS TestSuite CSV, MTS 793 specimen.dat, Instron Bluehill RawData, plain CSV;
+      the format is detected from the content): each file is reduced.
+
+options:
+  --out DIR           write lab_results.json, cubes.csv, sand_stats.csv, gradation.csv and
+                      comparisons.csv into DIR (default: ./lab_out); written atomically
+  --no-write          write no files
+  --json              print lab_results.json to stdout instead of the tables
+  --cubes             also print one row per cube
+  --config FILE       for export files: a TOML with [specimen], [reduction], [columns]
+  --format NAME       for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv
+  --column ROLE=NAME  for export files: take column NAME as ROLE
+                      (time, load, crosshead, strain, lateral_strain, stress)
+  --unit ROLE=UNIT    for export files: unit of ROLE's column (e.g. load=kN)
+  -h, --help          show this text
+
+exit status: 0 success, 1 bad input (message "file:line: what was expected"), 2 bad usage
+)";
+}
+
+int run_lab_command(const std::vector<std::string>& args) {
+    for (const auto& a : args)
+        if (a == "-h" || a == "--help") {
+            std::cout << lab_command_usage();
+            return 0;
+        }
+    try {
+        const CommandLine c = parse(args);
+        const LabStats lab = analyse(c);
+        if (c.write) write_lab_outputs(c.out, lab);
+        if (c.json) std::cout << lab_stats_to_json(lab).dump(2) << "\n";
+        else print_lab_report(std::cout, lab, c.per_cube || lab.source == "files");
+        if (c.write && !c.json) std::cout << "\nwrote " << (c.out / "lab_results.json").string() << " and CSV tables\n";
+        return 0;
+    } catch (const UsageError& e) {
+        std::cerr << "gradem lab: " << e.what() << "\n(see gradem lab --help)\n";
+        return 2;
+    } catch (const InputError& e) {
+        std::cerr << "gradem lab: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "gradem lab: error: " << e.what() << "\n";
+        return 1;
+    }
+}
+
+}  // namespace gradem::lab

@@ -1,0 +1,17 @@
+#pragma once
+// `gradem lab ...`: the command-line entry of the lab-data side (dispatched from app/main.cpp).
+
+#include <string>
+#include <vector>
+
+namespace gradem::lab {
+
+/// Runs `gradem lab` with `args` (what follows "lab" on the command line). Prints to stdout,
+/// errors to stderr as "gradem lab: file:line: what". Returns 0 on success, 1 on bad input,
+/// 2 on bad usage. Never throws.
+int run_lab_command(const std::vector<std::string>& args);
+
+/// The usage text printed by --help.
+const char* lab_command_usage();
+
+}  // namespace gradem::lab

@@ -1,0 +1,162 @@
+#include "lab_data/lab_stats.hpp"
+
+#include <cmath>
+
+#include "lab_data/input_error.hpp"
+#include "lab_data/text.hpp"
+
+namespace gradem::lab {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string display_path(const fs::path& p, const fs::path& base) {
+    if (base.empty()) return p.string();
+    std::error_code ec;
+    const fs::path rel = fs::relative(p, base, ec);
+    return ec || rel.empty() ? p.string() : rel.generic_string();
+}
+
+SandStatistics statistics_of(const std::vector<CubeResult>& cubes, const std::vector<std::size_t>& members) {
+    std::vector<double> peak, strain, chord, tangent, crosshead;
+    for (auto i : members) {
+        const auto& r = cubes[i].reduction;
+        peak.push_back(r.peak_stress_pa);
+        strain.push_back(r.strain_at_peak);
+        chord.push_back(r.chord_modulus_pa);
+        tangent.push_back(r.tangent_modulus_pa);
+        crosshead.push_back(r.strain_at_peak_crosshead);
+    }
+    return {summarize(peak), summarize(strain), summarize(chord), summarize(tangent), summarize(crosshead)};
+}
+
+// C109 range checks per batch; flags the cubes concerned.
+void range_checks(SandResult& sand, std::vector<CubeResult>& cubes, std::size_t group_size) {
+    for (const auto& batch : sand.batches) {
+        std::vector<std::size_t> members;
+        for (auto i : sand.cubes)
+            if (cubes[i].batch == batch) members.push_back(i);
+        std::vector<double> strength;
+        for (auto i : members) strength.push_back(cubes[i].reduction.peak_stress_pa);
+        for (const RangeCheck& g : c109_range_checks(strength, group_size)) {
+            BatchRangeCheck b{batch, {}, {}, g};
+            for (auto k : g.members) {
+                CubeResult& cube = cubes[members[k]];
+                b.files.push_back(cube.file);
+                if (static_cast<long>(k) == g.discarded) {
+                    cube.flags.push_back("c109_range_discarded");
+                    b.discarded_file = cube.file;
+                }
+                if (g.retest_required && static_cast<long>(k) != g.discarded) cube.flags.push_back("c109_retest_required");
+            }
+            sand.range_checks.push_back(std::move(b));
+        }
+    }
+}
+
+void gradation_of(SandResult& sand, const fs::path& sieve, const C144Limits* limits) {
+    if (sieve.empty()) return;
+    sand.sieve = read_sieve_csv(sieve);
+    sand.gradation = analyse_gradation(sand.sieve->curve);
+    if (limits) sand.c144 = check_c144(sand.sieve->curve, *limits);
+}
+
+void compare_sands(LabStats& lab) {
+    struct Quantity { const char* name; double CurveReduction::*field; };
+    static const Quantity kQuantities[] = {{"peak_stress_mpa", &CurveReduction::peak_stress_pa},
+                                           {"strain_at_peak", &CurveReduction::strain_at_peak},
+                                           {"chord_modulus_mpa", &CurveReduction::chord_modulus_pa},
+                                           {"tangent_modulus_mpa", &CurveReduction::tangent_modulus_pa}};
+    for (std::size_t a = 0; a < lab.sands.size(); ++a)
+        for (std::size_t b = a + 1; b < lab.sands.size(); ++b)
+            for (const auto& q : kQuantities) {
+                std::vector<double> xa, xb;
+                for (auto i : lab.sands[a].cubes) xa.push_back(lab.cubes[i].reduction.*q.field);
+                for (auto i : lab.sands[b].cubes) xb.push_back(lab.cubes[i].reduction.*q.field);
+                lab.comparisons.push_back({q.name, lab.sands[a].name, lab.sands[b].name, welch_t_test(xa, xb)});
+            }
+}
+
+}  // namespace
+
+CubeResult reduce_cube_file(const fs::path& path, const std::string& display_name, const DatasetConfig& config) {
+    const LoadFrameTest test = read_load_frame_test(path, config.read);
+    CubeResult cube;
+    cube.file = display_name;
+    cube.format = test.format;
+    cube.geometry = test.geometry;
+    cube.columns = test.columns;
+    cube.representative = test.representative || config.representative;
+    cube.notes = test.notes;
+    cube.reduction = reduce_curve(to_stress_strain(test), config.reduction);
+    const auto& r = cube.reduction;
+    if (r.status != ReductionStatus::ok) {
+        const int line = r.problem_index < test.line.size() ? test.line[r.problem_index] : 0;
+        throw InputError(path.string(), line, r.message);
+    }
+    cube.load_rate_n_per_s = r.stress_rate_pa_per_s * test.geometry.loaded_area_m2();
+    if (std::isfinite(cube.load_rate_n_per_s) && (cube.load_rate_n_per_s < kC109MinLoadRate || cube.load_rate_n_per_s > kC109MaxLoadRate))
+        cube.flags.push_back("load_rate_outside_c109");
+    if (test.strain.empty()) cube.flags.push_back("no_extensometer");
+    if (config.reduction.fit_popovics && !r.popovics.converged) cube.flags.push_back("popovics_fit_not_converged");
+    return cube;
+}
+
+LabStats analyse_lab_dataset(const fs::path& folder_or_toml) { return analyse_lab_dataset(load_dataset_config(folder_or_toml)); }
+
+LabStats analyse_lab_dataset(const DatasetConfig& config) {
+    LabStats lab;
+    lab.dataset = config.name;
+    lab.source = config.file.string();
+    lab.representative = config.representative;
+    lab.note = config.note;
+    lab.reduction = config.reduction;
+    std::optional<C144Limits> limits;
+    if (!config.c144_limits.empty()) limits = read_c144_limits(config.c144_limits);
+    for (const SandSpec& spec : config.sands) {
+        SandResult sand;
+        sand.name = spec.name;
+        sand.specific_gravity = spec.specific_gravity;
+        gradation_of(sand, spec.sieve, limits ? &*limits : nullptr);
+        for (const BatchSpec& batch : spec.batches) {
+            sand.batches.push_back(batch.name);
+            for (const fs::path& f : batch.files) {
+                CubeResult cube = reduce_cube_file(f, display_path(f, config.folder), config);
+                cube.sand = spec.name;
+                cube.batch = batch.name;
+                sand.cubes.push_back(lab.cubes.size());
+                lab.cubes.push_back(std::move(cube));
+            }
+        }
+        range_checks(sand, lab.cubes, config.c109_group_size);
+        sand.stats = statistics_of(lab.cubes, sand.cubes);
+        lab.sands.push_back(std::move(sand));
+    }
+    for (const auto& c : lab.cubes) lab.representative = lab.representative || c.representative;
+    compare_sands(lab);
+    return lab;
+}
+
+LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConfig& config) {
+    LabStats lab;
+    lab.dataset = config.name;
+    lab.source = "files";
+    lab.note = config.note;
+    lab.reduction = config.reduction;
+    SandResult group;
+    group.name = "files";
+    for (const auto& f : files) {
+        CubeResult cube = reduce_cube_file(f, f.string(), config);
+        cube.sand = group.name;
+        group.cubes.push_back(lab.cubes.size());
+        lab.representative = lab.representative || cube.representative;
+        lab.cubes.push_back(std::move(cube));
+    }
+    group.stats = statistics_of(lab.cubes, group.cubes);
+    lab.sands.push_back(std::move(group));
+    if (lab.representative && lab.note.empty())
+        lab.note = "at least one file says it holds REPRESENTATIVE (synthetic) data, not measurements";
+    return lab;
+}
+
+}  // namespace gradem::lab

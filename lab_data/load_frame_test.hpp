@@ -1,0 +1,74 @@
+#pragma once
+// One load-frame test in SI, compression positive: what a reader's RawTable means once the
+// column roles (time, load, crosshead, extensometer strain, …) are known and units converted.
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lab_data/curve_reduction.hpp"
+#include "lab_data/export_readers.hpp"
+#include "lab_data/raw_table.hpp"
+
+namespace gradem::lab {
+
+enum class ChannelRole { time, load, crosshead, strain, lateral_strain, stress };
+inline constexpr ChannelRole kAllRoles[] = {ChannelRole::time, ChannelRole::load, ChannelRole::crosshead,
+                                            ChannelRole::strain, ChannelRole::lateral_strain, ChannelRole::stress};
+/// "time", "load", "crosshead", "strain", "lateral_strain", "stress" (also the config keys).
+const char* role_name(ChannelRole role);
+std::optional<ChannelRole> parse_role(std::string_view name);
+
+/// User overrides of the inferred column roles ([columns] in the dataset config).
+struct ChannelOverrides {
+    std::map<ChannelRole, std::string> column;  ///< column name as in the file (case and outer spaces ignored)
+    std::map<ChannelRole, std::string> unit;    ///< unit to use instead of (or in the absence of) the file's
+};
+
+/// Specimen geometry. C109 cubes: 50 mm (2 in.) edge; loaded face width × depth.
+struct SpecimenGeometry {
+    double width_m = 0.050;       ///< loaded-face edge [m]
+    double depth_m = 0.050;       ///< loaded-face edge [m]
+    double height_m = 0.050;      ///< platen-to-platen height [m] (for crosshead strain)
+    double area_m2 = 0.0;         ///< loaded area [m²]; > 0 overrides width × depth (e.g. from a diameter)
+    double gauge_length_m = 0.0;  ///< extensometer gauge length [m]; needed only if it reports a length
+    std::string source = "nominal";  ///< "nominal", "config", or "file"
+    [[nodiscard]] double loaded_area_m2() const { return area_m2 > 0 ? area_m2 : width_m * depth_m; }
+    [[nodiscard]] std::optional<std::string> invalid_reason() const;
+};
+
+struct ReadOptions {
+    ExportFormat format = ExportFormat::automatic;
+    ChannelOverrides channels;
+    SpecimenGeometry nominal;       ///< used for whatever the file does not state
+    bool use_file_geometry = true;  ///< take dimensions from the file's metadata when present
+};
+
+struct LoadFrameTest {
+    std::string file, format, encoding;
+    std::vector<double> time_s;          ///< from the first sample [s]; empty if no time column
+    std::vector<double> load_n;          ///< compression positive [N]
+    std::vector<double> crosshead_m;     ///< platen approach from the first sample [m]; may be empty
+    std::vector<double> strain;          ///< extensometer strain, zeroed at the first sample [-]; may be empty
+    std::vector<double> lateral_strain;  ///< may be empty
+    std::vector<int> line;               ///< file line of each sample
+    SpecimenGeometry geometry;
+    std::map<std::string, std::string> columns;  ///< role -> "name [unit]" actually used
+    bool representative = false;  ///< the file itself says it is REPRESENTATIVE (synthetic), see datasets/study
+    std::vector<std::string> notes;
+};
+
+/// Maps roles, converts units and signs. Throws InputError (file:line: column 'x': ...).
+LoadFrameTest interpret_export(const RawTable& table, const ReadOptions& options = {});
+
+/// read_raw_export + interpret_export.
+LoadFrameTest read_load_frame_test(const std::filesystem::path& path, const ReadOptions& options = {});
+LoadFrameTest read_load_frame_bytes(std::string_view bytes, const std::string& file, const ReadOptions& options = {});
+
+/// Stress = load / loaded area (ASTM C109 §11); strain = extensometer (or, without one,
+/// crosshead displacement / height); crosshead strain reported separately.
+StressStrainCurve to_stress_strain(const LoadFrameTest& test);
+
+}  // namespace gradem::lab

@@ -1,0 +1,159 @@
+// `gradem lab` end to end through run_lab_command, on the bundled study dataset and fixtures.
+#include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "lab_data/lab_command.hpp"
+#include "lab_data/lab_stats.hpp"
+#include "lab_data/text.hpp"
+
+using namespace gradem::lab;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kStudy = GRADEM_LAB_STUDY;
+std::string fixture(const char* name) { return std::string(GRADEM_LAB_FIXTURES) + "/" + name; }
+
+struct Run {
+    int status = 0;
+    std::string out, err;
+};
+
+Run run(const std::vector<std::string>& args) {
+    std::ostringstream out, err;
+    auto* old_out = std::cout.rdbuf(out.rdbuf());
+    auto* old_err = std::cerr.rdbuf(err.rdbuf());
+    Run r;
+    r.status = run_lab_command(args);
+    std::cout.rdbuf(old_out);
+    std::cerr.rdbuf(old_err);
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("gradem_lab_test_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    return p;
+}
+
+// generator_truth.csv: the law parameters each representative cube was generated from.
+std::map<std::string, std::map<std::string, double>> truth() {
+    std::ifstream in(kStudy + "/generator_truth.csv");
+    std::string line;
+    std::vector<std::string> names;
+    std::map<std::string, std::map<std::string, double>> rows;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> cells;
+        for (const auto& c : split_cells(line, ',').cells) cells.push_back(c.text);
+        if (names.empty()) { names = cells; continue; }
+        for (std::size_t i = 3; i < cells.size(); ++i) rows[cells[0]][names[i]] = std::stod(cells[i]);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("lab: on the study dataset: JSON contract and the generating law recovered", "[lab][cli]") {
+    const fs::path out = scratch("study");
+    const Run r = run({kStudy, "--out", out.string(), "--json"});
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["representative_data"] == true);
+    CHECK_THAT(j["note"].get<std::string>(), Catch::Contains("REPRESENTATIVE"));
+    REQUIRE(j["sands"].size() == 2);
+    CHECK(j["sands"][0]["name"] == "pre-blended");
+    CHECK(j["sands"][0]["n"] == 27);
+    CHECK(j["sands"][1]["n"] == 12);
+    CHECK(j["sands"][0]["gradation"]["uscs"] == "SP");
+    CHECK(j["sands"][0]["gradation"]["c144_conforms"] == false);
+    CHECK(j["sands"][1]["gradation"]["c144_conforms"] == false);
+    CHECK(j["sands"][1]["gradation"]["d10_mm"].get<double>() == Approx(0.240).epsilon(1e-3));
+    // The generator rescales each sand's law peaks to mean 21.0 / 17.5 MPa; C109 peaks carry
+    // only load noise (12 N on ~50 kN).
+    CHECK(j["sands"][0]["peak_stress_mpa"]["mean"].get<double>() == Approx(21.0).epsilon(0.002));
+    CHECK(j["sands"][1]["peak_stress_mpa"]["mean"].get<double>() == Approx(17.5).epsilon(0.002));
+    CHECK(j["sands"][0]["chord_modulus_mpa"]["mean"].get<double>() == Approx(12000).epsilon(0.01));
+    CHECK(j["sands"][1]["strain_at_peak"]["mean"].get<double>() == Approx(0.0037).epsilon(0.01));
+
+    const auto t = truth();
+    REQUIRE(j["cubes"].size() == 39);
+    for (const auto& c : j["cubes"]) {
+        const auto& law = t.at(c["file"].get<std::string>());
+        CHECK(c["peak_stress_mpa"].get<double>() == Approx(law.at("fc_mpa")).epsilon(0.005));
+        CHECK(c["chord_modulus_mpa"].get<double>() == Approx(law.at("chord_modulus_mpa")).epsilon(0.02));
+        CHECK(c["strain_at_peak"].get<double>() == Approx(law.at("eps_c")).epsilon(0.03));
+        CHECK(c["popovics"]["elastic_modulus_mpa"].get<double>() == Approx(law.at("initial_modulus_mpa")).epsilon(0.02));
+        CHECK(c["strain_at_peak_crosshead"].get<double>() > c["strain_at_peak"].get<double>());
+        CHECK(c["representative"] == true);
+        CHECK(c["load_rate_n_per_s"].get<double>() > 900);
+        CHECK(c["load_rate_n_per_s"].get<double>() < 1800);
+    }
+    for (const auto& c : j["comparisons"])
+        if (c["quantity"] == "peak_stress_mpa") CHECK(c["p_value"].get<double>() < 0.05);
+    for (const char* f : {"lab_results.json", "cubes.csv", "sand_stats.csv", "gradation.csv", "comparisons.csv"})
+        CHECK(fs::exists(out / f));
+    fs::remove_all(out);
+}
+
+TEST_CASE("lab: prints Table 2 and Table 4 and marks representative data", "[lab][cli]") {
+    const Run r = run({kStudy, "--no-write"});
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("REPRESENTATIVE DATA") && Catch::Contains("Table 2") && Catch::Contains("Table 4") &&
+                          Catch::Contains("does not conform") && Catch::Contains("Welch"));
+}
+
+TEST_CASE("lab: on single export files reduces each", "[lab][cli]") {
+    const Run r = run({fixture("plain.csv"), fixture("mts793_deu.dat"), "--no-write", "--json"});
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["cubes"].size() == 2);
+    // plain.csv: 12.5 kN on the nominal 50 × 50 mm face; 5 kN per 200 µε.
+    CHECK(j["cubes"][0]["peak_stress_mpa"].get<double>() == Approx(5.0));
+    CHECK(j["cubes"][0]["chord_modulus_mpa"].get<double>() == Approx(10000.0));
+    CHECK(j["cubes"][0]["strain_at_peak"].get<double>() == Approx(0.0006));
+    CHECK(j["representative_data"] == false);
+}
+
+TEST_CASE("lab: bad input: non-zero exit file:line message no partial result", "[lab][cli][errors]") {
+    const fs::path out = scratch("bad");
+    const Run r = run({fixture("plain.csv"), fixture("text_in_cell.csv"), "--out", out.string()});
+    CHECK(r.status == 1);
+    CHECK_THAT(r.err, Catch::Contains("text_in_cell.csv:6: column 'load': 'abc' is not a number"));
+    CHECK_FALSE(fs::exists(out / "lab_results.json"));
+    CHECK_FALSE(fs::exists(out / "cubes.csv"));
+
+    const Run w = run({fixture("window_not_reached.csv"), "--no-write"});
+    CHECK(w.status == 1);
+    CHECK_THAT(w.err, Catch::Contains("window_not_reached.csv:5: the ascending branch never reaches the lower chord strain"));
+
+    const fs::path toml = scratch("toml");
+    fs::create_directories(toml);
+    std::ofstream(toml / "dataset.toml") << "[dataset]\nname = \"x\"\nrepresentativ = true\n";
+    const Run t = run({toml.string(), "--no-write"});
+    CHECK(t.status == 1);
+    CHECK_THAT(t.err, Catch::Contains("dataset.toml:3: unknown key 'representativ' in [dataset]"));
+    std::ofstream(toml / "dataset.toml") << "[[sand]]\nname = \"s\"\n[[sand.batch]]\nfiles = \"cubes/*.csv\"\n";
+    CHECK_THAT(run({toml.string(), "--no-write"}).err, Catch::Contains("dataset.toml:4: pattern 'cubes/*.csv' matches no file"));
+    fs::remove_all(toml);
+}
+
+TEST_CASE("lab: usage: --help unknown options overrides from the command line", "[lab][cli]") {
+    const Run h = run({"--help"});
+    CHECK(h.status == 0);
+    CHECK_THAT(h.out, Catch::Contains("usage: gradem lab"));
+    CHECK(run({"--bogus", "x"}).status == 2);
+    CHECK(run({}).status == 2);
+    const Run o = run({fixture("plain.csv"), "--no-write", "--json", "--column", "load=crosshead_mm"});
+    CHECK(o.status == 1);  // a length column cannot be the load
+    CHECK_THAT(o.err, Catch::Contains("unit 'mm' is a length unit; expected a force unit"));
+}
