@@ -17,5 +17,7 @@ std::int64_t parse_int(const std::string& option, const std::string& value, std:
                        std::int64_t hi);
 
 int run_quick_cube(const std::vector<std::string>& args);
+int run_specimen(const std::vector<std::string>& args);
+int run_compress(const std::vector<std::string>& args);
 
 }  // namespace gradem::app

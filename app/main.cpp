@@ -16,6 +16,9 @@ constexpr const char* kUsage =
     "  lab <dataset folder | export files...>   lab statistics from sieve and load-frame files\n"
     "  quick-cube [--particles N] [--seed S] [--strain-rate R] [--out DIR]\n"
     "                                          bonded cube compressed to past its peak\n"
+    "  specimen <config.toml> [--show]         generate (or show the cached) packing of a config\n"
+    "  compress <config.toml> [--out DIR] [--check-rate] [--vtk]\n"
+    "                                          cube test of a config: load curve, cracks, macro.json\n"
     "  --help, --version\n";
 
 }  // namespace
@@ -53,6 +56,8 @@ int main(int argc, char** argv) {
     try {
         if (all[0] == "lab") return gradem::lab::run_lab_command(rest);
         if (all[0] == "quick-cube") return gradem::app::run_quick_cube(rest);
+        if (all[0] == "specimen") return gradem::app::run_specimen(rest);
+        if (all[0] == "compress") return gradem::app::run_compress(rest);
         throw gradem::app::UsageError("unknown command '" + all[0] + "'");
     } catch (const gradem::app::UsageError& e) {
         std::cerr << "gradem: " << e.what() << "\n" << kUsage;

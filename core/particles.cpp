@@ -19,6 +19,14 @@ std::int32_t ParticleSet::add(const Vec3& x, double r, double density) {
     return static_cast<std::int32_t>(radius.size() - 1);
 }
 
+void ParticleSet::set_radius(std::size_t i, double r) {
+    const double ratio = r / radius[i];
+    const double mass_ratio = ratio * ratio * ratio;
+    radius[i] = r;
+    mass[i] *= mass_ratio;
+    inertia[i] *= mass_ratio * ratio * ratio;
+}
+
 namespace {
 template <class T>
 void apply_order(std::vector<T>& v, const std::vector<std::int32_t>& order) {

@@ -32,6 +32,9 @@ struct ParticleSet {
     /// Adds a solid sphere of the given density [kg/m^3]; returns its index.
     std::int32_t add(const Vec3& x, double r, double density);
 
+    /// Changes the radius of particle i, keeping its density (mass and inertia follow).
+    void set_radius(std::size_t i, double r);
+
     /// Reorders every array by `order` (new index k holds old particle order[k]).
     void permute(const std::vector<std::int32_t>& order);
 

@@ -108,6 +108,19 @@ void World::set_particle_motion(std::int32_t i, const Vec3& velocity, const Vec3
     particles_.spin.at(static_cast<std::size_t>(i)) = spin;
 }
 
+void World::scale_radii(double factor) {
+    if (!(factor > 0.0 && std::isfinite(factor)))
+        throw std::invalid_argument("World::scale_radii: factor = " + std::to_string(factor) + " violates > 0");
+    double r_max = 0.0;
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+        particles_.set_radius(i, particles_.radius[i] * factor);
+        r_max = std::max(r_max, particles_.radius[i]);
+    }
+    radius_growth_since_rebuild_ += std::fabs(factor - 1.0) * r_max;
+    forces_current_ = false;
+    if (sim_.time_step == 0.0) dt_ = 0.0;
+}
+
 ParticleSet& World::edit_particles() {
     rebuild_needed_ = true;
     forces_current_ = false;
@@ -188,6 +201,39 @@ std::size_t World::active_contact_count() const {
         if (gap < 0.0) ++count;
     }
     return count;
+}
+
+std::vector<std::int32_t> World::contact_counts() const {
+    std::vector<std::int32_t> count(particles_.size(), 0);
+    for (const Pair& p : pairs_) {
+        const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
+        const bool bonded = p.bond >= 0 && bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
+        const double reach = particles_.radius[i] + particles_.radius[j];
+        if (bonded || norm2(particles_.position[j] - particles_.position[i]) < reach * reach) {
+            ++count[i];
+            ++count[j];
+        }
+    }
+    for (std::size_t k = 0; k < wall_contacts_.size(); ++k)
+        if (norm2(wall_out_[k].force) > 0.0) ++count[static_cast<std::size_t>(wall_contacts_[k].particle)];
+    return count;
+}
+
+double World::unbalanced_force_ratio() const {
+    double contact_sum = 0.0, unbalanced_sum = 0.0;
+    std::size_t contacts = 0, free_particles = 0;
+    for (const PairOutput& o : pair_out_) {
+        const double f = norm(o.force_j);
+        if (f > 0.0) contact_sum += f, ++contacts;
+    }
+    for (const WallOutput& o : wall_out_) {
+        const double f = norm(o.force);
+        if (f > 0.0) contact_sum += f, ++contacts;
+    }
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+        if (!(particles_.flags[i] & kFixedVelocity)) unbalanced_sum += norm(particles_.force[i]), ++free_particles;
+    if (contacts == 0 || free_particles == 0 || contact_sum == 0.0) return 0.0;
+    return (unbalanced_sum / static_cast<double>(free_particles)) / (contact_sum / static_cast<double>(contacts));
 }
 
 std::size_t World::memory_bytes() const {

@@ -45,6 +45,9 @@ public:
     /// Sets the velocity [m/s] and spin [rad/s] a particle moves with over the next step (for
     /// prescribed motion of kFixedVelocity / kFixedSpin particles); keeps all histories.
     void set_particle_motion(std::int32_t i, const Vec3& velocity, const Vec3& spin);
+    /// Multiplies every radius by `factor` at constant density (radius expansion, as PFC's
+    /// genesis installs stress). Counts towards the Verlet skin instead of forcing a rebuild.
+    void scale_radii(double factor);
     /// Particle state for editing (set-up only); forces a neighbour rebuild.
     ParticleSet& edit_particles();
     Wall& wall(std::int32_t index) { return walls_[static_cast<std::size_t>(index)]; }
@@ -74,6 +77,11 @@ public:
     [[nodiscard]] std::size_t intact_bond_count() const;
     [[nodiscard]] std::size_t pair_count() const { return pairs_.size(); }
     [[nodiscard]] std::size_t active_contact_count() const;
+    /// Contacts (overlapping pairs, wall contacts and intact bonds) per particle.
+    [[nodiscard]] std::vector<std::int32_t> contact_counts() const;
+    /// PFC's mean unbalanced-force ratio: mean |resultant force| over free particles divided by
+    /// the mean magnitude of the contact and bond forces (0 when nothing touches).
+    [[nodiscard]] double unbalanced_force_ratio() const;
     /// Bytes held by the particle, pair, bond and wall-contact arrays (capacity, not size).
     [[nodiscard]] std::size_t memory_bytes() const;
     /// Hash of positions, velocities, spins and bond forces (FNV-1a over the raw bits).
@@ -129,6 +137,7 @@ private:
     double dt_ = 0.0;
     double skin_ = 0.0;
     double max_displacement_ = 0.0;
+    double radius_growth_since_rebuild_ = 0.0;  ///< sum of r_max * (factor - 1) [m]
     bool rebuild_needed_ = true;
 
     /// Energy terms of the latest force evaluation.
@@ -137,6 +146,7 @@ private:
     };
     ForceEvaluation last_eval_;
     bool forces_current_ = false;
+    bool reset_energy_reference_ = true;  ///< set-up changed the energy: new reference next step
 
     // Phases of step(), in order (world_step.cpp). `dt` is the time over which the current
     // velocities moved the particles here (0 for a fresh evaluation after set-up).

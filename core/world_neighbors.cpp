@@ -14,7 +14,8 @@ bool World::needs_rebuild() const {
     if (rebuild_needed_) return true;
     double wall_shift = 0.0;
     for (const Vec3& s : wall_shift_since_rebuild_) wall_shift = std::max(wall_shift, norm(s));
-    const double d = std::sqrt(max_displacement_);
+    // Two grains that each grew by g and moved by d close their gap by at most 2 (d + g).
+    const double d = std::sqrt(max_displacement_) + radius_growth_since_rebuild_;
     return 2.0 * d > skin_ || d + wall_shift > skin_;
 }
 
@@ -27,6 +28,7 @@ void World::rebuild_neighbors() {
     position_at_rebuild_ = particles_.position;
     wall_shift_since_rebuild_.assign(walls_.size(), Vec3{});
     max_displacement_ = 0.0;
+    radius_growth_since_rebuild_ = 0.0;
     rebuild_needed_ = false;
     ++profile_.rebuilds;
     if (sim_.time_step == 0.0) dt_ = sim_.time_step_safety * critical_time_step();

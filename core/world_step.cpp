@@ -53,6 +53,7 @@ RunStatus World::step() {
         gather_forces();
         profile_.integrate += clock.lap();
         forces_current_ = true;
+        reset_energy_reference_ = true;
     }
     const IntegrationSums sums = integrate();
     double wall_work = 0.0;
@@ -66,7 +67,10 @@ RunStatus World::step() {
     energy_.bond_break += last_eval_.released;
     energy_.damping += sums.damping;
     energy_.boundary_work += sums.boundary + wall_work;
-    if (step_ == 0) energy_.reference = energy_.total();
+    if (reset_energy_reference_) {
+        energy_.reference = energy_.total();
+        reset_energy_reference_ = false;
+    }
     check_divergence(sums);
     ++step_;
     time_ += dt_;

@@ -21,7 +21,7 @@ struct EnergyLedger {
     double friction = 0.0;       ///< dissipated by Coulomb slip, cumulative, >= 0 [J]
     double bond_break = 0.0;     ///< strain energy released by broken bonds, cumulative [J]
     double boundary_work = 0.0;  ///< work done on the particles by walls and prescribed particles [J]
-    double reference = 0.0;      ///< total at the first step
+    double reference = 0.0;      ///< total at the first step after the latest set-up change
 
     [[nodiscard]] double total() const {
         return kinetic + strain_contact + strain_bond + damping + friction + bond_break -

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -57,7 +58,8 @@ void add_platens(World& world, double friction) {
 }
 
 PlatenTestResult run_platen_compression(World& world, const PlatenTestSpec& spec,
-                                        const ProgressCallback& progress) {
+                                        const ProgressCallback& progress, const Gauges* gauges,
+                                        const SnapshotCallback& snapshot) {
     if (auto why = spec.invalid_reason()) throw std::invalid_argument(*why);
     if (world.walls().size() != 2) add_platens(world, spec.platen_friction);
     const auto start = std::chrono::steady_clock::now();
@@ -68,6 +70,7 @@ PlatenTestResult run_platen_compression(World& world, const PlatenTestSpec& spec
     const double full_speed = 0.5 * spec.strain_rate * r.height;  // each platen
     const double ramp_time = spec.ramp_strain / spec.strain_rate;
     const double t0 = world.time();
+    const Vec3 platen_start{world.walls()[0].displacement.z, world.walls()[1].displacement.z, 0.0};
     double peak = 0.0;
     std::int64_t tension = 0, shear = 0;
     std::size_t seen_breaks = 0;
@@ -87,7 +90,11 @@ PlatenTestResult run_platen_compression(World& world, const PlatenTestSpec& spec
         CurvePoint pt;
         pt.step = world.step_count();
         pt.time = world.time();
-        pt.platen_strain = (world.walls()[0].displacement.z - world.walls()[1].displacement.z) / r.height;
+        pt.platen_strain = ((world.walls()[0].displacement.z - platen_start.x) -
+                            (world.walls()[1].displacement.z - platen_start.y)) / r.height;
+        constexpr double kNoGauge = std::numeric_limits<double>::quiet_NaN();
+        pt.gauge_strain = gauges ? gauges->axial_strain(world.particles()) : kNoGauge;
+        pt.lateral_strain = gauges ? gauges->lateral_strain(world.particles()) : kNoGauge;
         pt.stress_bottom = -world.walls()[0].reaction.z / r.area;
         pt.stress_top = world.walls()[1].reaction.z / r.area;
         pt.stress = 0.5 * (pt.stress_top + pt.stress_bottom);
@@ -101,6 +108,7 @@ PlatenTestResult run_platen_compression(World& world, const PlatenTestSpec& spec
             r.strain_at_peak = pt.platen_strain;
         }
         if (progress) progress(pt, peak);
+        if (snapshot) snapshot(world, pt);
         if (peak > 0.0 && pt.stress < spec.stop_fraction * peak && pt.platen_strain > r.strain_at_peak) {
             r.stop_reason = "post-peak";
             break;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/world.hpp"
+#include "experiments/gauges.hpp"
 
 namespace gradem::exp {
 
@@ -28,6 +29,8 @@ struct CurvePoint {
     std::int64_t step = 0;
     double time = 0.0;            ///< [s]
     double platen_strain = 0.0;   ///< closing / initial height, compression positive [-]
+    double gauge_strain = 0.0;    ///< extensometer strain, compression positive [-] (NaN without gauges)
+    double lateral_strain = 0.0;  ///< lateral gauge strain, expansion positive [-] (NaN without gauges)
     double stress_top = 0.0;      ///< top platen load / initial area [Pa], compression positive
     double stress_bottom = 0.0;   ///< bottom platen load / initial area [Pa]
     double stress = 0.0;          ///< mean of the two [Pa]
@@ -51,10 +54,15 @@ struct PlatenTestResult {
 void add_platens(World& world, double friction);
 
 using ProgressCallback = std::function<void(const CurvePoint&, double peak)>;
+/// Called at every recorded point with the World (e.g. for ParaView snapshots).
+using SnapshotCallback = std::function<void(const World&, const CurvePoint&)>;
 
 /// Runs the test on a World with bonds installed. `progress` (optional) is called at every
-/// recorded point.
+/// recorded point; `gauges` (optional) add the extensometer strains to the curve. The peak and
+/// strain at peak here are the platen-based ones.
 PlatenTestResult run_platen_compression(World& world, const PlatenTestSpec& spec,
-                                        const ProgressCallback& progress = {});
+                                        const ProgressCallback& progress = {},
+                                        const Gauges* gauges = nullptr,
+                                        const SnapshotCallback& snapshot = {});
 
 }  // namespace gradem::exp

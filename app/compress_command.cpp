@@ -1,0 +1,174 @@
+// `gradem compress <config.toml> [--out DIR] [--check-rate] [--vtk]`: the virtual C109 cube test
+// of a config. Loads (or generates and caches) the packing, runs run_cube_test with a progress
+// line on stderr, writes load_curve.csv, cracks.csv and macro.json (and ParaView files with
+// --vtk) into the output folder, and prints a summary. --check-rate runs the test again at half
+// the strain rate and reports the relative change of peak stress and chord modulus.
+// Exit codes: 0 ok, 2 bad usage or input, 3 a diverged simulation (outputs still written).
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "experiments/cube_config.hpp"
+#include "experiments/cube_output.hpp"
+#include "experiments/cube_test.hpp"
+#include "experiments/packing_cache.hpp"
+
+namespace gradem::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct CompressOptions {
+    std::string config, out;
+    bool check_rate = false, vtk = false;
+};
+
+CompressOptions parse_compress(const std::vector<std::string>& args) {
+    CompressOptions o;
+    for (std::size_t k = 0; k < args.size(); ++k) {
+        if (args[k] == "--out") {
+            if (k + 1 >= args.size()) throw UsageError("--out needs a value");
+            o.out = args[++k];
+        } else if (args[k] == "--check-rate") o.check_rate = true;
+        else if (args[k] == "--vtk") o.vtk = true;
+        else if (!args[k].empty() && args[k][0] == '-') throw UsageError("unknown option '" + args[k] + "' for compress");
+        else if (o.config.empty()) o.config = args[k];
+        else throw UsageError("compress takes one config file, got '" + o.config + "' and '" + args[k] + "'");
+    }
+    if (o.config.empty()) throw UsageError("compress needs a config file: gradem compress <config.toml> [--out DIR] [--check-rate] [--vtk]");
+    return o;
+}
+
+std::string clock_text(double seconds) {
+    if (!std::isfinite(seconds) || seconds < 0) return "?";
+    const long s = std::lround(seconds);
+    char buf[32];
+    if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+    else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+    return buf;
+}
+
+/// One progress line on stderr: rewritten in place on a terminal (every second), a new line
+/// every 10 s otherwise. ETA: the end strain is guessed as max(2 x strain at the peak so far,
+/// current strain), at most max_strain, and approached at the strain rate measured so far.
+class ProgressLine {
+public:
+    ProgressLine(std::string label, double max_strain)
+        : label_(std::move(label)), max_strain_(max_strain), tty_(isatty(fileno(stderr)) != 0),
+          start_(Clock::now()), last_(start_) {}
+
+    void update(const exp::CurvePoint& p, double peak) {
+        const auto now = Clock::now();
+        if (!first_) first_ = {now, p.platen_strain};
+        if (p.stress >= peak) peak_strain_ = p.platen_strain;
+        if (now - last_ < std::chrono::seconds(tty_ ? 1 : 10)) return;
+        last_ = now;
+        const double elapsed = seconds(start_, now);
+        const double rate = (p.platen_strain - first_->second) / seconds(first_->first, now);  // strain per wall second
+        const double end = std::min(max_strain_, std::max(2.0 * peak_strain_, p.platen_strain));
+        const double eta = rate > 0.0 ? (end - p.platen_strain) / rate : std::nan("");
+        std::fprintf(stderr, "%s%s: %s  strain %.5f  stress %.3f MPa  peak %.3f MPa  breaks %lld  ETA %s%s",
+                     tty_ ? "\r" : "", label_.c_str(), clock_text(elapsed).c_str(), p.platen_strain, p.stress * 1e-6,
+                     peak * 1e-6, static_cast<long long>(p.broken_tension + p.broken_shear), clock_text(eta).c_str(),
+                     tty_ ? "   " : "\n");
+        printed_ = true;
+    }
+
+    void finish() const {
+        if (tty_ && printed_) std::fprintf(stderr, "\n");
+    }
+
+    exp::ProgressCallback callback() {
+        return [this](const exp::CurvePoint& p, double peak) { update(p, peak); };
+    }
+
+private:
+    static double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+    std::string label_;
+    double max_strain_;
+    bool tty_;
+    Clock::time_point start_, last_;
+    std::optional<std::pair<Clock::time_point, double>> first_;  // first point: time, strain
+    double peak_strain_ = 0.0;
+    bool printed_ = false;
+};
+
+exp::CubeTestResult run_with_progress(const exp::Packing& packing, const exp::CubeConfig& c, const exp::CubeTestSpec& spec,
+                                      const std::string& label) {
+    std::fprintf(stderr, "%s: strain rate %.4g 1/s, bonding and settling ...\n", label.c_str(), spec.loading.strain_rate);
+    ProgressLine line(label, spec.loading.max_strain);
+    exp::CubeTestResult r = exp::run_cube_test(packing, c.material, spec, line.callback());
+    line.finish();
+    return r;
+}
+
+void print_summary(const exp::CubeTestResult& r, const std::optional<exp::RateCheck>& check, const std::string& out) {
+    std::int64_t tension = 0, shear = 0;
+    for (const BreakEvent& e : r.cracks) ++(e.mode == BondState::broken_shear ? shear : tension);
+    const lab::CurveReduction& m = r.macro;
+    std::printf("cube test (%zu particles, %zu bonds):\n", r.particles, r.bonds);
+    std::printf("  peak stress          %9.3f MPa\n", m.peak_stress_pa * 1e-6);
+    std::printf("  strain at peak       %9.5f gauge, %.5f platen\n", m.strain_at_peak, r.strain_at_peak_platen);
+    std::printf("  chord modulus (C469) %9.3f GPa%s\n", m.chord_modulus_pa * 1e-9,
+                m.status == lab::ReductionStatus::ok ? "" : ("  (" + m.message + ")").c_str());
+    std::printf("  Poisson's ratio      %9.3f\n", m.poisson_ratio);
+    std::printf("  broken bonds         %lld tension, %lld shear (of %zu)\n", static_cast<long long>(tension),
+                static_cast<long long>(shear), r.bonds);
+    std::printf("  stop                 %s after %lld steps, wall time %.1f s\n", r.test.stop_reason.c_str(),
+                static_cast<long long>(r.test.steps), r.test.wall_seconds);
+    if (check)
+        std::printf("  rate check (half rate %.4g 1/s): peak %+.2f %%, chord modulus %+.2f %%%s\n", check->half_rate,
+                    100.0 * check->peak_change, 100.0 * check->modulus_change, check->diverged_half ? " (half-rate run diverged)" : "");
+    for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
+    std::printf("  results in           %s\n", out.c_str());
+}
+
+}  // namespace
+
+int run_compress(const std::vector<std::string>& args) {
+    const CompressOptions o = parse_compress(args);
+    exp::CubeConfig config = exp::load_cube_config(o.config);
+    if (!o.out.empty()) config.out_dir = o.out;
+    if (o.vtk) config.vtk = true;
+
+    const lab::GradationCurve curve = exp::load_gradation(config);
+    bool cached = false;
+    if (!std::filesystem::exists(exp::packing_cache_path(config.cache_dir, exp::packing_key(curve, config.specimen))))
+        std::fprintf(stderr, "compress: generating the packing (genesis) ...\n");
+    const exp::Packing packing = exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
+    std::fprintf(stderr, "compress: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
+
+    exp::CubeTestSpec spec = config.test;
+    spec.loading.strain_rate = exp::strain_rate_for(config, packing);
+    if (config.vtk) spec.snapshot = exp::vtk_snapshots(config.out_dir / "vtk", config.vtk_every);
+    const exp::CubeTestResult result = run_with_progress(packing, config, spec, "compress");
+
+    std::optional<exp::RateCheck> check;
+    bool half_diverged = false;
+    if (o.check_rate) {
+        exp::CubeTestSpec half = spec;
+        half.loading.strain_rate = 0.5 * spec.loading.strain_rate;
+        half.snapshot = {};
+        const exp::CubeTestResult slow = run_with_progress(packing, config, half, "compress (half rate)");
+        check = exp::compare_rates(result, slow, spec.loading.strain_rate);
+        half_diverged = slow.diverged();
+    }
+    exp::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check);
+    print_summary(result, check, config.out_dir.string());
+    if (result.diverged() || half_diverged) {
+        std::fprintf(stderr, "gradem: the simulation diverged: %s\n",
+                     (result.diverged() ? result.test.stop_reason : check->stop_reason_half).c_str());
+        return 3;
+    }
+    return 0;
+}
+
+}  // namespace gradem::app

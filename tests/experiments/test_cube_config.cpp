@@ -1,0 +1,257 @@
+// Cube-test config files: display units converted to SI once, defaults from the structs,
+// relative paths, and each kind of bad input (unknown table or key, wrong type, out-of-range
+// value) rejected with the file, line, key, value and rule. Also the shipped configs and the
+// result writers (CSV columns, crack strain interpolation, null for NaN in macro.json).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include <unistd.h>
+
+#include "experiments/cube_config.hpp"
+#include "experiments/cube_output.hpp"
+#include "lab_data/input_error.hpp"
+
+using namespace gradem;
+using namespace gradem::exp;
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& name)
+        : path(fs::temp_directory_path() / ("gradem-" + name + "-" + std::to_string(::getpid()))) {
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+fs::path write(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+    return path;
+}
+
+const std::string kSieve =
+    "sieve,opening_mm,percent_passing\n#4,4.75,100\n#16,1.18,98\n#50,0.3,70\n#100,0.149,25\n#200,0.075,0\n";
+
+// A config whose key on line 3 (after two header lines) is `line3`.
+std::string config_with(const std::string& table, const std::string& line3) {
+    return "[specimen]\nsieve_csv = \"sand.csv\"\n" + std::string(table == "specimen" ? "" : "[" + table + "]\n") + line3 + "\n";
+}
+
+/// load_cube_config must throw an InputError at `line` whose message contains every `parts`.
+void require_rejected(const fs::path& file, int line, std::initializer_list<std::string> parts) {
+    try {
+        (void)load_cube_config(file);
+        FAIL("accepted " << file);
+    } catch (const lab::InputError& e) {
+        INFO(e.what());
+        CHECK(e.line() == line);
+        CHECK_THAT(e.what(), Contains(file.string()));
+        for (const auto& p : parts) CHECK_THAT(e.what(), Contains(p));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("a config converts display units to SI and resolves paths from its folder", "[cube_config]") {
+    const TempDir dir("config-good");
+    write(dir.path / "sand.csv", kSieve);
+    const fs::path file = write(dir.path / "runs" / "c.toml", R"(
+[specimen]
+sieve_csv = "../sand.csv"
+[size_rule]
+min_diameter_mm = 0.3
+max_diameter_mm = 2.0
+scale = 1.5
+[genesis]
+edge_mm = 10.0
+locked_in_stress_mpa = 0.2
+reference_modulus_gpa = 5
+density_kg_m3 = 2650
+min_contacts = 4
+max_steps = 5000
+seed = 9
+[material]
+effective_modulus_gpa = 2.5
+tensile_strength_mpa = 8
+tensile_strength_cv = 0.25
+cohesion_mpa = 16
+friction_angle_deg = 30
+platen_friction = 0.3
+bond_seed = 11
+[test]
+strain_rate_per_s = 0.5
+record_interval = 20
+[output]
+dir = "results"
+cache_dir = "/tmp/somewhere/cache"
+vtk = true
+vtk_every = 5
+)");
+    const CubeConfig c = load_cube_config(file);
+    CHECK(c.sieve_csv == (dir.path / "sand.csv").lexically_normal());
+    CHECK(c.dataset.empty());
+    CHECK(c.specimen.size_rule.min_diameter == Approx(0.3e-3));
+    CHECK(c.specimen.size_rule.max_diameter == Approx(2.0e-3));
+    CHECK(c.specimen.size_rule.scale == 1.5);
+    CHECK(c.specimen.genesis.edge == Approx(10.0e-3));
+    CHECK(c.specimen.genesis.locked_in_stress == Approx(0.2e6));
+    CHECK(c.specimen.genesis.reference_modulus == Approx(5e9));
+    CHECK(c.specimen.genesis.density == 2650);
+    CHECK(c.specimen.genesis.min_contacts == 4);
+    CHECK(c.specimen.genesis.max_steps == 5000);
+    CHECK(c.specimen.seed == 9);
+    CHECK(c.specimen.genesis.target_solid_fraction == GenesisSpec{}.target_solid_fraction);  // default
+    CHECK(c.material.contact.effective_modulus == Approx(2.5e9));
+    CHECK(c.material.bond.effective_modulus == Approx(2.5e9));  // defaults to the contact's
+    CHECK(c.material.bond.stiffness_ratio == c.material.contact.stiffness_ratio);
+    CHECK(c.material.bond.tensile_strength_mean == Approx(8e6));
+    CHECK(c.material.bond.tensile_strength_std == Approx(2e6));  // cv x mean
+    CHECK(c.material.bond.cohesion_mean == Approx(16e6));
+    CHECK(c.material.bond.cohesion_std == 0.0);
+    CHECK(c.material.bond.friction_angle_deg == 30);
+    CHECK(c.material.bond.seed == 11);
+    CHECK(c.material.platen_friction == 0.3);
+    CHECK(c.test.loading.platen_friction == 0.3);
+    CHECK(c.test.loading.strain_rate == 0.5);
+    CHECK_FALSE(c.auto_strain_rate);
+    CHECK(c.test.loading.record_interval == 20);
+    CHECK(c.test.slab_fraction == CubeTestSpec{}.slab_fraction);
+    CHECK(c.out_dir == (dir.path / "runs" / "results").lexically_normal());
+    CHECK(c.cache_dir == fs::path("/tmp/somewhere/cache"));
+    CHECK(c.vtk);
+    CHECK(c.vtk_every == 5);
+    CHECK(load_gradation(c).size_m.size() == 5);
+}
+
+TEST_CASE("a minimal config takes the struct defaults", "[cube_config]") {
+    const TempDir dir("config-minimal");
+    write(dir.path / "sand.csv", kSieve);
+    const CubeConfig c = load_cube_config(write(dir.path / "m.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nstrain_rate_per_s = \"auto\"\n"));
+    CHECK(c.auto_strain_rate);
+    CHECK(c.material.contact.effective_modulus == ContactParams{}.effective_modulus);
+    CHECK(c.material.bond.tensile_strength_mean == BondParams{}.tensile_strength_mean);
+    CHECK(c.specimen.genesis.edge == GenesisSpec{}.edge);
+    CHECK(c.test.loading.max_strain == PlatenTestSpec{}.max_strain);
+    CHECK(c.out_dir == (dir.path / "out" / "m").lexically_normal());
+    CHECK(c.cache_dir == (dir.path / "out" / "packing-cache").lexically_normal());
+    CHECK_FALSE(c.vtk);
+}
+
+TEST_CASE("bad configs are rejected with file, line, key, value and rule", "[cube_config]") {
+    const TempDir dir("config-bad");
+    const fs::path file = dir.path / "bad.toml";
+    write(dir.path / "sand.csv", kSieve);
+
+    SECTION("unknown key") {
+        write(file, config_with("material", "youngs = 3"));
+        require_rejected(file, 4, {"unknown key 'material.youngs'", "known:", "effective_modulus_gpa"});
+    }
+    SECTION("unknown table") {
+        write(file, config_with("materials", "friction = 3"));
+        require_rejected(file, 3, {"unknown table '[materials]'", "known tables"});
+    }
+    SECTION("wrong type") {
+        write(file, config_with("material", "friction = \"high\""));
+        require_rejected(file, 4, {"key 'material.friction' = \"high\"", "expected a number"});
+        write(file, config_with("genesis", "max_steps = 1.5"));
+        require_rejected(file, 4, {"key 'genesis.max_steps'", "expected an integer"});
+        write(file, config_with("test", "strain_rate_per_s = \"fast\""));
+        require_rejected(file, 4, {"key 'test.strain_rate_per_s' = \"fast\"", "\"auto\""});
+        write(file, config_with("output", "vtk = 1"));
+        require_rejected(file, 4, {"key 'output.vtk' = 1", "true or false"});
+    }
+    SECTION("out of range, rule from the struct's validator") {
+        write(file, config_with("material", "radius_multiplier = 1.5"));
+        require_rejected(file, 4, {"key 'material.radius_multiplier' = 1.5 violates in (0, 1]"});
+        write(file, config_with("genesis", "edge_mm = -2"));
+        require_rejected(file, 4, {"key 'genesis.edge_mm' = -2 violates > 0", "genesis.edge = -0.002"});
+        write(file, config_with("material", "tensile_strength_cv = -0.1"));
+        require_rejected(file, 4, {"key 'material.tensile_strength_cv' = -0.1 violates >= 0"});
+        write(file, config_with("material", "bond_modulus_gpa = 0"));
+        require_rejected(file, 4, {"key 'material.bond_modulus_gpa' = 0 violates > 0"});
+        write(file, config_with("material", "damping = 1.0"));
+        require_rejected(file, 4, {"key 'material.damping' = 1.0 violates in [0, 1)"});
+        write(file, config_with("test", "stop_fraction = 2"));
+        require_rejected(file, 4, {"key 'test.stop_fraction' = 2 violates in (0, 1)"});
+        write(file, config_with("test", "slab_fraction = 0.7"));
+        require_rejected(file, 4, {"key 'test.slab_fraction' = 0.7 violates in (0, 0.5)"});
+        write(file, config_with("genesis", "seed = -1"));
+        require_rejected(file, 4, {"key 'genesis.seed' = -1 violates in [0,"});
+        write(file, config_with("output", "vtk_every = -3"));
+        require_rejected(file, 4, {"key 'output.vtk_every' = -3 violates in [0,"});
+    }
+    SECTION("specimen source") {
+        write(file, "[specimen]\nsand = \"x\"\n");
+        require_rejected(file, 0, {"either dataset"});
+        write(file, "[specimen]\ndataset = \"d\"\n");
+        require_rejected(file, 2, {"'specimen.sand' is required"});
+    }
+    SECTION("TOML syntax") {
+        write(file, "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nmax_strain = = 3\n");
+        require_rejected(file, 4, {});
+    }
+}
+
+TEST_CASE("the shipped configs load and name a sand of the study", "[cube_config]") {
+    const fs::path configs = fs::path(GRADEM_SOURCE_DIR) / "experiments" / "configs";
+    for (const char* name : {"default_cube.toml", "verification_cube.toml"}) {
+        INFO(name);
+        const CubeConfig c = load_cube_config(configs / name);
+        CHECK(c.sand == "pre-blended");
+        CHECK(load_gradation(c).passing.back() == 1.0);
+    }
+    CubeConfig c = load_cube_config(configs / "default_cube.toml");
+    c.sand = "no such sand";
+    CHECK_THROWS_WITH(load_gradation(c), Contains("'no such sand' is not a sand") && Contains("Van Buren"));
+}
+
+TEST_CASE("result writers: curve and crack CSVs, macro.json with null for NaN", "[cube_output]") {
+    CubeTestResult r;
+    for (int s = 0; s < 3; ++s) {
+        CurvePoint p;
+        p.step = 100 + 50 * s;
+        p.platen_strain = 0.001 * s;
+        p.gauge_strain = 0.0008 * s;
+        p.lateral_strain = std::nan("");
+        p.stress = 1e6 * s;
+        r.test.curve.push_back(p);
+    }
+    BreakEvent e;
+    e.step = 125;  // halfway between the first two points
+    e.mode = BondState::broken_shear;
+    r.cracks.push_back(e);
+    r.macro.poisson_ratio = std::nan("");
+    r.test.stop_reason = "post-peak";
+    const std::string curve = load_curve_csv(r);
+    CHECK_THAT(curve, Contains("step,time_s,platen_strain,gauge_strain,lateral_strain,stress_mpa"));
+    const std::string cracks = cracks_csv(r);
+    CHECK_THAT(cracks, Contains("\n125,0,0.0005,"));
+    CHECK_THAT(cracks, Contains(",shear,"));
+
+    CubeConfig c;
+    Packing k;
+    k.box_hi = {1e-3, 1e-3, 1e-3};
+    CubeTestResult half = r;
+    half.macro.peak_stress_pa = 2e6;
+    r.macro.peak_stress_pa = 2.1e6;
+    const RateCheck check = compare_rates(r, half, 1.0);
+    const auto j = nlohmann::json::parse(macro_json(r, c, k, 1.0, check));
+    CHECK(j["poisson_ratio"].is_null());
+    CHECK(j["peak_stress_mpa"].get<double>() == Approx(2.1));
+    CHECK(j["broken_bonds"]["shear"] == 1);
+    CHECK(j["rate_check"]["peak_change"].get<double>() == Approx(-0.1 / 2.1));
+    CHECK(j["rate_check"]["half_rate_per_s"].get<double>() == 0.5);
+    CHECK(j.contains("chord_modulus_mpa"));
+    CHECK(j.contains("strain_at_peak"));
+    CHECK(j["material"]["display"].contains("tensile_strength_mpa"));
+}

@@ -1,0 +1,127 @@
+// The virtual cube test on a small bonded specimen (~800 grains of the Van Buren sand,
+// d >= 0.3 mm, 3.6 mm cube): quasi-static platen balance, the affine bound on the modulus, the
+// homogeneity laws of the bonded-particle model on the whole test (calibration.md §1), and
+// bitwise determinism across thread counts.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+
+#include "core/parallel.hpp"
+#include "experiments/affine_estimate.hpp"
+#include "experiments/cube_test.hpp"
+#include "study_curves.hpp"
+
+using namespace gradem;
+using namespace gradem::exp;
+
+namespace {
+
+const Packing& small_packing() {
+    static const Packing packing = [] {
+        SpecimenSpec spec;
+        spec.size_rule.min_diameter = 0.3e-3;
+        spec.size_rule.max_diameter = 1.18e-3;
+        spec.genesis.edge = 3.6e-3;
+        spec.genesis.max_steps = 60000;
+        spec.seed = 5;
+        return generate_packing(test::van_buren_curve(), spec);
+    }();
+    return packing;
+}
+
+MaterialParams material(double modulus_scale = 1.0, double strength_scale = 1.0) {
+    MaterialParams m;
+    m.contact.effective_modulus = m.bond.effective_modulus = 10.0e9 * modulus_scale;
+    m.bond.tensile_strength_mean = 5.0e6 * strength_scale;
+    m.bond.tensile_strength_std = 1.0e6 * strength_scale;
+    m.bond.cohesion_mean = 10.0e6 * strength_scale;
+    m.bond.cohesion_std = 2.0e6 * strength_scale;
+    return m;
+}
+
+CubeTestSpec test_spec() {
+    CubeTestSpec t;
+    t.loading.strain_rate = 3.0;  // ~1/3 of quasi_static_strain_rate for this cube
+    return t;
+}
+
+struct Macro {
+    double peak, strain, modulus;
+};
+
+Macro macro_of(const CubeTestResult& r) {
+    REQUIRE(r.macro.status == lab::ReductionStatus::ok);
+    REQUIRE_FALSE(r.diverged());
+    return {r.macro.peak_stress_pa, r.macro.strain_at_peak, r.macro.chord_modulus_pa};
+}
+
+const CubeTestResult& base_run() {
+    static const CubeTestResult r = run_cube_test(small_packing(), material(), test_spec());
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("cube test: platens agree before the peak, modulus within the affine bounds",
+          "[experiments][cube]") {
+    const CubeTestResult& r = base_run();
+    const Macro m = macro_of(r);
+    INFO("peak " << m.peak * 1e-6 << " MPa, strain at peak " << m.strain << ", chord modulus "
+                 << m.modulus * 1e-9 << " GPa, imbalance " << r.platen_imbalance);
+    CHECK(r.platen_imbalance < 0.02);
+    CHECK(r.test.stop_reason == "post-peak");
+    CHECK(r.cracks.size() > 100);
+    CHECK(r.settle_ratio < test_spec().settle_ratio);
+    const AffineModuli affine = affine_moduli(small_packing(), material());
+    INFO("affine (Voigt) Young's modulus " << affine.youngs * 1e-9 << " GPa");
+    CHECK(m.modulus < affine.youngs);
+    CHECK(m.modulus > 0.5 * affine.youngs);
+    CHECK(r.macro.poisson_ratio > 0.0);
+    CHECK(r.macro.poisson_ratio < 0.5);
+}
+
+TEST_CASE("homogeneity: moduli x 2 -> modulus x 2, same peak, strain at peak / 2",
+          "[experiments][cube][homogeneity]") {
+    const Macro base = macro_of(base_run());
+    const Macro stiff = macro_of(run_cube_test(small_packing(), material(2.0, 1.0), test_spec()));
+    CHECK(stiff.modulus / base.modulus == Approx(2.0).epsilon(0.05));
+    CHECK(stiff.peak / base.peak == Approx(1.0).epsilon(0.05));
+    CHECK(stiff.strain / base.strain == Approx(0.5).epsilon(0.07));
+}
+
+TEST_CASE("homogeneity: strengths x 2 -> peak x 2, strain at peak x 2, same modulus",
+          "[experiments][cube][homogeneity]") {
+    const Macro base = macro_of(base_run());
+    const Macro strong = macro_of(run_cube_test(small_packing(), material(1.0, 2.0), test_spec()));
+    CHECK(strong.peak / base.peak == Approx(2.0).epsilon(0.05));
+    CHECK(strong.strain / base.strain == Approx(2.0).epsilon(0.07));
+    CHECK(strong.modulus / base.modulus == Approx(1.0).epsilon(0.03));
+}
+
+TEST_CASE("same packing and seed give bitwise-identical curves with 1 and 2 threads",
+          "[experiments][cube][determinism]") {
+    CubeTestSpec t = test_spec();
+    t.loading.max_strain = 0.0008;  // through the first breaks, well before the peak
+    auto curve_with = [&](int threads) {
+#ifdef _OPENMP
+        omp_set_num_threads(threads);
+#else
+        (void)threads;
+#endif
+        return run_cube_test(small_packing(), material(), t);
+    };
+    const CubeTestResult one = curve_with(1);
+    const CubeTestResult two = curve_with(2);
+    REQUIRE(one.test.curve.size() == two.test.curve.size());
+    REQUIRE_FALSE(one.cracks.empty());
+    CHECK(one.cracks.size() == two.cracks.size());
+    for (std::size_t k = 0; k < one.test.curve.size(); ++k) {
+        const CurvePoint &a = one.test.curve[k], &b = two.test.curve[k];
+        CHECK(std::memcmp(&a.stress, &b.stress, sizeof(double)) == 0);
+        CHECK(std::memcmp(&a.gauge_strain, &b.gauge_strain, sizeof(double)) == 0);
+        CHECK(std::memcmp(&a.lateral_strain, &b.lateral_strain, sizeof(double)) == 0);
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(thread_count());
+#endif
+}
