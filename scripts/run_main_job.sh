@@ -4,4 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-./build/app/gradem quick-cube --out out/quick-cube
+./build/app/gradem lab lab_data/datasets/study --out out/lab
+./build/app/gradem compress experiments/configs/default_cube.toml
