@@ -2,6 +2,7 @@
 // relative paths, and each kind of bad input (unknown table or key, wrong type, out-of-range
 // value) rejected with the file, line, key, value and rule. Also the shipped configs and the
 // result writers (CSV columns, crack strain interpolation, null for NaN in macro.json).
+#include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -23,15 +24,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / ("gradem-" + name + "-" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
+using test::TempDir;
 
 fs::path write(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());

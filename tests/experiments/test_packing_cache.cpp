@@ -1,6 +1,7 @@
 // Packing cache: a hand-made packing survives save -> load bit for bit; the key follows every
 // genesis input and nothing else; each kind of bad file gets its own error; writes leave no
 // temporary file behind; load_or_generate uses the cache without running genesis.
+#include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -21,15 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / ("gradem-" + name + "-" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
+using test::TempDir;
 
 // Five grains and every report field set to something other than its default.
 Packing hand_packing() {
