@@ -28,7 +28,8 @@ rows = []
 for path in sorted(glob.glob("out/resolution/*/macro.json")):
     size, seed = os.path.basename(os.path.dirname(path)).split("-")
     m = json.load(open(path))
-    rows.append((size, int(seed), m.get("particles"), m["peak_stress_mpa"], m["chord_modulus_mpa"], m["strain_at_peak"], m.get("wall_seconds")))
+    run = m.get("run", {})
+    rows.append((size, int(seed), run.get("particles"), m["peak_stress_mpa"], m["chord_modulus_mpa"], m["strain_at_peak"], run.get("wall_seconds")))
 with open("out/resolution/summary.csv", "w") as f:
     f.write("size,seed,particles,peak_stress_mpa,chord_modulus_mpa,strain_at_peak,test_wall_seconds\n")
     for r in rows: f.write(",".join(str(x) for x in r) + "\n")
