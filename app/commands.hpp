@@ -19,5 +19,6 @@ std::int64_t parse_int(const std::string& option, const std::string& value, std:
 int run_quick_cube(const std::vector<std::string>& args);
 int run_specimen(const std::vector<std::string>& args);
 int run_compress(const std::vector<std::string>& args);
+int run_calibrate(const std::vector<std::string>& args);
 
 }  // namespace gradem::app

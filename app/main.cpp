@@ -19,6 +19,8 @@ constexpr const char* kUsage =
     "  specimen <config.toml> [--show]         generate (or show the cached) packing of a config\n"
     "  compress <config.toml> [--out DIR] [--check-rate] [--vtk]\n"
     "                                          cube test of a config: load curve, cracks, macro.json\n"
+    "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
+    "                                          micro-parameters from the lab targets: summary.json, ...\n"
     "  --help, --version\n";
 
 }  // namespace
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
         if (all[0] == "quick-cube") return gradem::app::run_quick_cube(rest);
         if (all[0] == "specimen") return gradem::app::run_specimen(rest);
         if (all[0] == "compress") return gradem::app::run_compress(rest);
+        if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
         throw gradem::app::UsageError("unknown command '" + all[0] + "'");
     } catch (const gradem::app::UsageError& e) {
         std::cerr << "gradem: " << e.what() << "\n" << kUsage;

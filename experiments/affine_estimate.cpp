@@ -10,7 +10,7 @@ AffineModuli affine_moduli(const Packing& k, const MaterialParams& m) {
     double mean_r = 0.0;
     for (double r : k.radius) mean_r += r;
     mean_r /= static_cast<double>(k.radius.size());
-    const double bond_gap = m.bond_gap_fraction * mean_r;
+    const double bond_gap = m.bond_gap(mean_r);
     std::vector<ParticlePair> pairs;
     make_cell_grid_search()->find_pairs(k.position, k.radius, bond_gap, pairs);
     double sum_normal = 0.0, sum_shear = 0.0;

@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 #include <vector>
 
+#include "experiments/toml_section.hpp"
 #include "lab_data/dataset.hpp"
 #include "lab_data/input_error.hpp"
 #include "lab_data/sieve_table.hpp"
@@ -18,148 +19,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using lab::InputError;
+using namespace toml_io;
 
 constexpr double kMm = 1.0e-3, kMpa = 1.0e6, kGpa = 1.0e9;  // display unit -> SI
 
-int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
-
-std::string show(double v) {
-    std::ostringstream os;
-    os.precision(15);
-    os << v;
-    if (os.str().find_first_of(".eEni") == std::string::npos) os << ".0";  // keep it a float
-    return os.str();
-}
-
-/// The value as the user wrote it (near enough): "text", 1.5, 3, true, or TOML for others.
-std::string show(const toml::node& n) {
-    if (n.is_floating_point()) return show(n.as_floating_point()->get());
-    std::ostringstream os;
-    if (n.is_string()) os << '"' << n.as_string()->get() << '"';
-    else if (n.is_integer()) os << n.as_integer()->get();
-    else if (n.is_boolean()) os << (n.as_boolean()->get() ? "true" : "false");
-    else n.visit([&](const auto& v) { os << v; });
-    return os.str();
-}
-
-/// Where a key was given (line 0: not given, the default applies) and its value as written.
-struct KeyInfo {
-    int line = 0;
-    std::string text;
-    bool converted = false;  ///< the struct holds the value in other units (SI, std from cv)
-};
-
-struct Context {
-    std::string file;                      ///< display name of the config file
-    fs::path dir;                          ///< relative paths start here
-    std::map<std::string, KeyInfo> keys;   ///< "table.key" -> KeyInfo
-};
-
-/// One [table]: typed getters that remember every key asked for, then finish() rejects the
-/// keys nobody asked for.
-class Section {
-public:
-    Section(Context& ctx, const toml::table& root, std::string name) : ctx_(ctx), name_(std::move(name)) {
-        if (const toml::node* n = root.get(name_)) {
-            if (!n->is_table()) throw InputError(ctx_.file, line_of(*n), "'" + name_ + "' must be a table ([" + name_ + "])");
-            table_ = n->as_table();
-        }
-    }
-
-    void real(const char* key, double& v, double to_si = 1.0) {
-        const toml::node* n = find(key);
-        if (!n) return record_default(key, show(v / to_si), to_si != 1.0);
-        if (!n->is_integer() && !n->is_floating_point()) type_error(key, *n, "a number");
-        v = n->value<double>().value() * to_si;
-        record(key, *n, to_si != 1.0);
-    }
-
-    template <typename Int>
-    void integer(const char* key, Int& v, std::int64_t lo = std::numeric_limits<std::int64_t>::min()) {
-        const toml::node* n = find(key);
-        if (!n) return record_default(key, std::to_string(v), false);
-        if (!n->is_integer()) type_error(key, *n, "an integer");
-        const std::int64_t x = n->as_integer()->get();
-        constexpr auto hi = static_cast<std::int64_t>(std::min<std::uint64_t>(std::numeric_limits<Int>::max(),
-                                                                                std::numeric_limits<std::int64_t>::max()));
-        lo = std::max<std::int64_t>(lo, std::is_signed_v<Int> ? std::numeric_limits<Int>::min() : 0);
-        if (x < lo || x > hi)
-            throw InputError(ctx_.file, line_of(*n), "key '" + full(key) + "' = " + std::to_string(x) + " violates in [" +
-                                                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
-        v = static_cast<Int>(x);
-        record(key, *n, false);
-    }
-
-    void boolean(const char* key, bool& v) {
-        const toml::node* n = find(key);
-        if (!n) return record_default(key, v ? "true" : "false", false);
-        if (!n->is_boolean()) type_error(key, *n, "true or false");
-        v = n->as_boolean()->get();
-        record(key, *n, false);
-    }
-
-    void text(const char* key, std::string& v) {
-        const toml::node* n = find(key);
-        if (!n) return record_default(key, v, false);
-        if (!n->is_string()) type_error(key, *n, "a string");
-        v = n->as_string()->get();
-        record(key, *n, false);
-    }
-
-    /// A path, relative to the config file's folder unless absolute.
-    void path(const char* key, fs::path& v) {
-        std::string s;
-        text(key, s);
-        if (!s.empty()) v = (ctx_.dir / fs::path(s)).lexically_normal();
-    }
-
-    /// The raw node (nullptr when absent), for keys with several accepted types.
-    const toml::node* node(const char* key) { return find(key); }
-    void record(const char* key, const toml::node& n, bool converted) {
-        ctx_.keys[full(key)] = {line_of(n), show(n), converted};
-    }
-    void record_default(const char* key, const std::string& text, bool converted) {
-        ctx_.keys[full(key)] = {0, text + " (default)", converted};
-    }
-    [[noreturn]] void type_error(const char* key, const toml::node& n, const std::string& expected) const {
-        throw InputError(ctx_.file, line_of(n), "key '" + full(key) + "' = " + show(n) + ": expected " + expected);
-    }
-    [[nodiscard]] std::string full(const char* key) const { return name_ + "." + key; }
-
-    void finish() const {
-        if (!table_) return;
-        for (auto&& [key, n] : *table_) {
-            if (asked_.count(std::string(key.str()))) continue;
-            std::string known;
-            for (const auto& k : asked_) known += (known.empty() ? "" : ", ") + k;
-            throw InputError(ctx_.file, line_of(n), "unknown key '" + full(std::string(key.str()).c_str()) + "' (known: " + known + ")");
-        }
-    }
-
-private:
-    const toml::node* find(const char* key) {
-        asked_.insert(key);
-        return table_ ? table_->get(key) : nullptr;
-    }
-
-    Context& ctx_;
-    std::string name_;
-    const toml::table* table_ = nullptr;
-    std::set<std::string> asked_;
-};
-
 const std::vector<std::string> kTables = {"specimen", "size_rule", "genesis", "material", "test", "output"};
-
-void check_tables(const Context& ctx, const toml::table& root) {
-    for (auto&& [key, n] : root) {
-        const std::string k(key.str());
-        if (std::find(kTables.begin(), kTables.end(), k) != kTables.end()) continue;
-        std::string known;
-        for (const auto& t : kTables) known += (known.empty() ? "" : ", ") + t;
-        throw InputError(ctx.file, line_of(n), (n.is_table() ? "unknown table '[" + k + "]'" : "unknown key '" + k + "'") +
-                                                   " (known tables: " + known + ")");
-    }
-}
 
 void read_specimen(Context& ctx, const toml::table& root, CubeConfig& c) {
     Section s(ctx, root, "specimen");
@@ -229,6 +93,7 @@ void read_material(Context& ctx, const toml::table& root, CubeConfig& c) {
     read_cv(s, "cohesion_cv", m.bond.cohesion_mean, m.bond.cohesion_std);
     s.real("friction_angle_deg", m.bond.friction_angle_deg);
     s.real("bond_gap_fraction", m.bond_gap_fraction);
+    s.real("bond_gap_um", m.bond_gap_absolute, 1.0e-6);
     s.real("platen_friction", m.platen_friction);
     s.real("damping", m.damping);
     s.integer("bond_seed", m.bond.seed);
@@ -295,7 +160,8 @@ const FieldMap kFields = {
     {"BondParams::tensile_strength_mean", "material.tensile_strength_mpa"},
     {"BondParams::tensile_strength_std", "material.tensile_strength_cv"}, {"BondParams::cohesion_mean", "material.cohesion_mpa"},
     {"BondParams::cohesion_std", "material.cohesion_cv"}, {"BondParams::friction_angle_deg", "material.friction_angle_deg"},
-    {"MaterialParams::bond_gap_fraction", "material.bond_gap_fraction"}, {"MaterialParams::platen_friction", "material.platen_friction"},
+    {"MaterialParams::bond_gap_fraction", "material.bond_gap_fraction"},
+    {"MaterialParams::bond_gap_absolute", "material.bond_gap_um"}, {"MaterialParams::platen_friction", "material.platen_friction"},
     {"MaterialParams::damping", "material.damping"},
     {"PlatenTestSpec::strain_rate", "test.strain_rate_per_s"}, {"PlatenTestSpec::ramp_strain", "test.ramp_strain"},
     {"PlatenTestSpec::platen_friction", "material.platen_friction"}, {"PlatenTestSpec::stop_fraction", "test.stop_fraction"},
@@ -334,18 +200,10 @@ void check(const Context& ctx, const std::optional<std::string>& reason) {
 
 CubeConfig load_cube_config(const fs::path& toml_file) {
     Context ctx;
-    ctx.file = toml_file.string();
-    ctx.dir = fs::absolute(toml_file).parent_path();
-    const std::string text = lab::decode_text(lab::read_file_bytes(toml_file)).utf8;
-    toml::table root;
-    try {
-        root = toml::parse(text, ctx.file);
-    } catch (const toml::parse_error& e) {
-        throw InputError(ctx.file, static_cast<int>(e.source().begin.line), std::string(e.description()));
-    }
+    const toml::table root = parse_toml_file(toml_file, ctx);
     CubeConfig c;
     c.file = toml_file;
-    check_tables(ctx, root);
+    check_tables(ctx, root, kTables);
     read_specimen(ctx, root, c);
     read_genesis(ctx, root, c);
     read_material(ctx, root, c);

@@ -68,6 +68,7 @@ json material_json(const MaterialParams& m) {
                          {"friction_angle_deg", b.friction_angle_deg},
                          {"seed", b.seed}}},
                {"bond_gap_fraction", m.bond_gap_fraction},
+               {"bond_gap_absolute_m", m.bond_gap_absolute},
                {"platen_friction", m.platen_friction},
                {"damping", m.damping}};
     // The config's keys and units ([material] table).
@@ -84,6 +85,7 @@ json material_json(const MaterialParams& m) {
                     {"cohesion_cv", cv(b.cohesion_std, b.cohesion_mean)},
                     {"friction_angle_deg", b.friction_angle_deg},
                     {"bond_gap_fraction", m.bond_gap_fraction},
+                    {"bond_gap_um", m.bond_gap_absolute * 1e6},
                     {"platen_friction", m.platen_friction},
                     {"damping", m.damping},
                     {"bond_seed", b.seed}};

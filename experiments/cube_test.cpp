@@ -15,6 +15,8 @@ std::optional<std::string> MaterialParams::invalid_reason() const {
     std::ostringstream out;
     if (!(bond_gap_fraction >= 0.0 && bond_gap_fraction <= 1.0))
         out << "MaterialParams::bond_gap_fraction = " << bond_gap_fraction << " violates in [0, 1]";
+    else if (!(bond_gap_absolute >= 0.0 && bond_gap_absolute < 1.0e-3))
+        out << "MaterialParams::bond_gap_absolute = " << bond_gap_absolute << " violates in [0, 1e-3) m";
     else if (!(platen_friction >= 0.0)) out << "MaterialParams::platen_friction = " << platen_friction << " violates >= 0";
     else if (!(damping >= 0.0 && damping < 1.0)) out << "MaterialParams::damping = " << damping << " violates in [0, 1)";
     if (out.str().empty()) return std::nullopt;
@@ -50,7 +52,7 @@ World build_specimen(const Packing& k, const MaterialParams& m) {
     SimParams sim;
     sim.local_damping = m.damping;
     World world(std::move(particles), m.contact, sim);
-    world.install_bonds(m.bond, m.bond_gap_fraction * mean_radius(k));
+    world.install_bonds(m.bond, m.bond_gap(mean_radius(k)));
     WallContactParams platen;
     platen.effective_modulus = m.contact.effective_modulus;
     platen.stiffness_ratio = m.contact.stiffness_ratio;

@@ -30,6 +30,12 @@ struct MaterialParams {
     ContactParams contact;            ///< E*, kappa*, grain friction mu
     BondParams bond;                  ///< Ē*, κ̄, λ̄, β̄, strengths and scatter, φ̄, seed
     double bond_gap_fraction = 0.1;   ///< installation gap / mean grain radius [-]
+    double bond_gap_absolute = 0.0;   ///< [m] if > 0, the installation gap for every packing (a
+                                      ///< paste-bridge length shared by sands), replacing the fraction
+    /// The installation gap [m] for a packing whose mean grain radius is `mean_radius` [m].
+    [[nodiscard]] double bond_gap(double mean_radius) const {
+        return bond_gap_absolute > 0.0 ? bond_gap_absolute : bond_gap_fraction * mean_radius;
+    }
     double platen_friction = 0.5;     ///< mu_w [-]
     double damping = 0.7;             ///< local damping alpha [-]
     [[nodiscard]] std::optional<std::string> invalid_reason() const;

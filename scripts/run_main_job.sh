@@ -5,4 +5,6 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 ./build/app/gradem lab lab_data/datasets/study --out out/lab
-./build/app/gradem compress experiments/configs/default_cube.toml
+# The calibration of both sands (joint mode) against the lab statistics just written:
+# results in out/calibration-joint (summary.json, summary.md, convergence.csv, curves.csv).
+./build/app/gradem calibrate calibrate/configs/joint.toml

@@ -1,0 +1,91 @@
+// `gradem calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]`: calibrates the
+// problem of a config (calibrate/README.md) and writes summary.json, summary.md,
+// convergence.csv and curves.csv into its output folder. Milestones and a progress line with
+// an ETA go to stderr; the one-line brief report goes to stdout.
+// Exit codes: 0 done, 2 bad usage, input or ledger (the ledger is left untouched), 4 the
+// calibration finished but every evaluation failed.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "calibrate/calibration.hpp"
+#include "calibrate/report.hpp"
+
+namespace gradem::app {
+namespace {
+
+struct CalibrateOptions {
+    std::string config, out;
+    int max_runs = 0, workers = 0;
+};
+
+CalibrateOptions parse_calibrate(const std::vector<std::string>& args) {
+    CalibrateOptions o;
+    for (std::size_t k = 0; k < args.size(); ++k) {
+        auto value = [&]() -> const std::string& {
+            if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
+            return args[++k];
+        };
+        if (args[k] == "--out") o.out = value();
+        else if (args[k] == "--max-runs") o.max_runs = static_cast<int>(parse_int("--max-runs", value(), 1, 100000));
+        else if (args[k] == "--workers") o.workers = static_cast<int>(parse_int("--workers", value(), 1, 64));
+        else if (!args[k].empty() && args[k][0] == '-') throw UsageError("unknown option '" + args[k] + "' for calibrate");
+        else if (o.config.empty()) o.config = args[k];
+        else throw UsageError("calibrate takes one config file, got '" + o.config + "' and '" + args[k] + "'");
+    }
+    if (o.config.empty()) throw UsageError("calibrate needs a config file: gradem calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]");
+    return o;
+}
+
+std::string clock_text(double seconds) {
+    if (!std::isfinite(seconds) || seconds < 0) return "?";
+    const long s = std::lround(seconds);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+    return buf;
+}
+
+/// The progress line: rewritten in place on a terminal, one line per run otherwise. The ETA
+/// is an upper bound: the budget's remaining runs at the mean run time, `workers` at a time.
+void print_progress(const cal::Progress& p) {
+    const bool tty = isatty(fileno(stderr)) != 0;
+    const double eta = p.mean_run_s * (p.max_runs - p.runs_used) / std::max(1, p.workers);
+    std::fprintf(stderr, "%scalibrate: runs %d/%d (%d from ledger)  evaluations %d  best objective %.4g  elapsed %s  ETA <= %s%s",
+                 tty ? "\r" : "", p.runs_used, p.max_runs, p.from_ledger, p.evaluations, p.best_objective,
+                 clock_text(p.elapsed_s).c_str(), clock_text(eta).c_str(), tty ? "   " : "\n");
+}
+
+}  // namespace
+
+int run_calibrate(const std::vector<std::string>& args) {
+    const CalibrateOptions o = parse_calibrate(args);
+    cal::CalibrationProblem problem = cal::load_calibration_problem(o.config);
+    if (!o.out.empty()) {
+        const bool default_ledger = problem.ledger == problem.out_dir / "ledger.sqlite";
+        problem.out_dir = o.out;
+        if (default_ledger) problem.ledger = problem.out_dir / "ledger.sqlite";
+    }
+    if (o.max_runs) problem.solver.max_runs = o.max_runs;
+    if (o.workers) problem.workers = o.workers;
+    if (problem.representative)
+        std::fprintf(stderr, "calibrate: the lab data are REPRESENTATIVE, not measurements (see %s)\n", problem.lab_results.c_str());
+    auto model = cal::make_model(problem);
+    const bool tty = isatty(fileno(stderr)) != 0;
+    const cal::CalibrationResult result = cal::run_calibration(
+        problem, *model,
+        [tty](const std::string& line) { std::fprintf(stderr, "%scalibrate: %s\n", tty ? "\r" : "", line.c_str()); },
+        print_progress);
+    if (tty) std::fprintf(stderr, "\n");
+    cal::write_calibration_outputs(problem, result);
+    std::printf("%s\n", cal::brief_report(problem, result).c_str());
+    std::printf("results in %s\n", problem.out_dir.c_str());
+    bool any_ok = false;
+    for (const auto& st : result.stages) any_ok = any_ok || (!st.solution.best.empty() && !st.solution.best_eval.failed);
+    return any_ok ? 0 : 4;
+}
+
+}  // namespace gradem::app

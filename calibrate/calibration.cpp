@@ -1,0 +1,112 @@
+#include "calibrate/calibration.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "calibrate/ledger.hpp"
+
+namespace gradem::cal {
+namespace {
+
+/// Max relative standard error of the seed mean over the evaluated sands, by quantity.
+void measure_noise(const Evaluation& e, double out[3]) {
+    for (const SandOutcome& s : e.sands)
+        for (int k = 0; k < 3; ++k)
+            if (s.ok > 1 && std::isfinite(s.std[k]) && s.mean[k] != 0.0)
+                out[k] = std::max(out[k], std::fabs(s.std[k] / s.mean[k]) / std::sqrt(static_cast<double>(s.ok)));
+}
+
+CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterSpace& space, Evaluator& evaluator,
+                             std::string label, std::vector<std::size_t> fitted,
+                             const std::function<void(const std::string&)>& log) {
+    CalibrationStage stage;
+    stage.label = std::move(label);
+    stage.fitted = fitted;
+    SolveContext ctx{problem, space, evaluator, fitted, log};
+    if (log) log(stage.label + ": solving with " + to_string(problem.solver.method));
+    stage.solution = solve(ctx, space.start());
+    if (stage.solution.best.empty()) {
+        stage.uncertainty.note = "not computed: no evaluation";
+        return stage;
+    }
+    measure_noise(stage.solution.best_eval, stage.noise_floor);
+    stage.uncertainty = estimate_uncertainty(ctx, stage.solution);
+    return stage;
+}
+
+}  // namespace
+
+const SandOutcome* CalibrationStage::outcome(std::size_t sand) const {
+    for (const auto* e : {&solution.best_eval, &prediction})
+        for (const SandOutcome& s : e->sands)
+            if (s.sand == sand) return &s;
+    return nullptr;
+}
+
+const Evaluation* CalibrationStage::evaluation_of(std::size_t sand) const {
+    for (const auto* e : {&solution.best_eval, &prediction})
+        for (const SandOutcome& s : e->sands)
+            if (s.sand == sand) return e;
+    return nullptr;
+}
+
+std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem) {
+    if (problem.model == "analytic") return make_analytic_model(problem.sands.size());
+    return make_dem_model(problem.base, problem.sands);
+}
+
+std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model) {
+    return fnv1a_hex(problem.describe() + "\n" + model.fingerprint());
+}
+
+CalibrationResult run_calibration(const CalibrationProblem& problem, CubeModel& model,
+                                  const std::function<void(const std::string&)>& log_line,
+                                  const std::function<void(const Progress&)>& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    CalibrationResult result;
+    auto log = [&](const std::string& s) {
+        result.log.push_back(s);
+        if (log_line) log_line(s);
+    };
+    // 1. The ledger first: a mismatch must stop us before any work.
+    result.fingerprint = problem_fingerprint(problem, model);
+    Ledger ledger(problem.ledger, result.fingerprint, problem.describe() + model.fingerprint() + "\n");
+    if (const auto rows = ledger.size()) log("ledger " + problem.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
+    // 2. Packings (cached), all sands and seeds at once on the workers.
+    model.prepare(problem.seeds, problem.workers, log);
+    const ParameterSpace space(problem.parameters, problem.base.material);
+    Evaluator evaluator(problem, space, model, ledger, model.fingerprint(), progress);
+    // 3. The mode's solves.
+    std::vector<std::size_t> all;
+    for (std::size_t s = 0; s < problem.sands.size(); ++s) all.push_back(s);
+    if (problem.mode == Mode::joint) {
+        result.stages.push_back(solve_stage(problem, space, evaluator, "joint", all, log));
+    } else if (problem.mode == Mode::per_sand) {
+        for (std::size_t s : all) result.stages.push_back(solve_stage(problem, space, evaluator, problem.sands[s], {s}, log));
+    } else {
+        std::size_t on = 0;
+        while (problem.sands[on] != problem.calibrate_on) ++on;
+        evaluator.set_reserve(static_cast<int>((all.size() - 1) * problem.seeds.size()));
+        CalibrationStage stage = solve_stage(problem, space, evaluator, "calibrated on " + problem.calibrate_on, {on}, log);
+        evaluator.set_reserve(0);
+        for (std::size_t s : all)
+            if (s != on) stage.predicted.push_back(s);
+        if (!stage.solution.best.empty()) {
+            try {
+                stage.prediction = evaluator.evaluate(stage.solution.best, stage.predicted, "prediction");
+            } catch (const BudgetExhausted& e) {
+                log(std::string("prediction not run: ") + e.what());
+            }
+        }
+        result.stages.push_back(std::move(stage));
+    }
+    result.history = evaluator.history();
+    result.runs_used = evaluator.runs_used();
+    result.runs_executed = evaluator.runs_executed();
+    result.runs_from_ledger = evaluator.runs_from_ledger();
+    result.runs_failed = evaluator.runs_failed();
+    result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace gradem::cal

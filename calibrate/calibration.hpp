@@ -1,0 +1,52 @@
+#pragma once
+// A whole calibration: open (or resume) the ledger, prepare the packings, run the mode's
+// solves, estimate the uncertainty, and collect what the reports need.
+//   joint     one parameter set for every sand (the paste is the same): 3 targets per sand
+//   per_sand  one solve per sand (3 targets each: no test of the model, only a fit)
+//   study     the study's protocol: calibrate on `calibrate_on`, then predict the other
+//             sands with the same parameters and report the prediction error
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "calibrate/cube_model.hpp"
+#include "calibrate/evaluator.hpp"
+#include "calibrate/problem.hpp"
+#include "calibrate/solver.hpp"
+#include "calibrate/uncertainty.hpp"
+
+namespace gradem::cal {
+
+struct CalibrationStage {
+    std::string label;                     ///< "joint", a sand's name, or "calibrated on <sand>"
+    std::vector<std::size_t> fitted;       ///< sands whose targets were fitted
+    std::vector<std::size_t> predicted;    ///< sands predicted with the fitted parameters (study)
+    SolveResult solution;
+    Uncertainty uncertainty;
+    Evaluation prediction;                 ///< study mode: the best point run on `predicted`
+    double noise_floor[3] = {0, 0, 0};     ///< max relative standard error of the seed mean, by quantity
+    /// The outcome of sand s (fitted or predicted) at the calibrated parameters; nullptr if none.
+    [[nodiscard]] const SandOutcome* outcome(std::size_t sand) const;
+    [[nodiscard]] const Evaluation* evaluation_of(std::size_t sand) const;
+};
+
+struct CalibrationResult {
+    std::string fingerprint;
+    std::vector<CalibrationStage> stages;
+    std::vector<Evaluation> history;
+    int runs_used = 0, runs_executed = 0, runs_from_ledger = 0, runs_failed = 0;
+    double wall_seconds = 0.0;
+    std::vector<std::string> log;          ///< the milestone lines
+};
+
+CalibrationResult run_calibration(const CalibrationProblem& problem, CubeModel& model,
+                                  const std::function<void(const std::string&)>& log = {},
+                                  const std::function<void(const Progress&)>& progress = {});
+
+/// The model for a problem: DEM (model = "dem") or the analytic stand-in.
+std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem);
+
+/// FNV-1a of the problem description and the model fingerprint: the ledger's identity.
+std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model);
+
+}  // namespace gradem::cal

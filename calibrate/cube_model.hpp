@@ -1,0 +1,71 @@
+#pragma once
+// What the calibration evaluates: one virtual cube test of one sand's packing (seed) with one
+// material. A run is a pure function of (sand, packing seed, material) -> outcome, so runs can
+// go to threads here and to other machines later. Two models implement it:
+//   DemCubeModel      the real thing: cached packings + exp::run_cube_test;
+//   AnalyticCubeModel a cheap closed-form stand-in with the DEM model's homogeneity, used by
+//                     the twin-experiment tests and for trying out a problem file in seconds.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "experiments/cube_config.hpp"
+#include "experiments/cube_test.hpp"
+
+namespace gradem::cal {
+
+struct RunRequest {
+    std::size_t sand = 0;         ///< index into the problem's sands
+    std::uint64_t seed = 1;       ///< packing seed (common random numbers: the same for every material)
+    exp::MaterialParams material;
+};
+
+enum class RunStatus { ok, diverged, timeout, failed };
+const char* to_string(RunStatus s);
+RunStatus run_status_from(const std::string& text);
+
+struct RunOutcome {
+    RunStatus status = RunStatus::failed;
+    std::string reason;             ///< why not ok (divergence, timeout, reduction failure)
+    double modulus_pa = 0.0;        ///< ASTM C469 chord modulus of the gauge-strain curve [Pa]
+    double peak_pa = 0.0;           ///< peak stress [Pa]
+    double strain_at_peak = 0.0;    ///< gauge strain at the peak [-]
+    double poisson = 0.0;           ///< Poisson's ratio (NaN if not measured)
+    std::int64_t particles = 0, bonds = 0, steps = 0;
+    double wall_seconds = 0.0;
+    std::vector<double> curve_strain, curve_stress_pa;  ///< thinned gauge-strain curve for reports
+    [[nodiscard]] bool ok() const { return status == RunStatus::ok; }
+};
+
+class CubeModel {
+public:
+    virtual ~CubeModel() = default;
+    /// Makes (or loads) everything the runs need, e.g. packings, with `workers` threads.
+    /// `log` receives one line per prepared case.
+    virtual void prepare(const std::vector<std::uint64_t>& seeds, int workers,
+                         const std::function<void(const std::string&)>& log) = 0;
+    /// One test; thread-safe; never throws for a simulation that fails (the status says so).
+    /// `timeout_s` <= 0: no time limit.
+    [[nodiscard]] virtual RunOutcome run(const RunRequest& request, double timeout_s) const = 0;
+    /// Everything that defines the runs besides the material (specimens, test, code version):
+    /// part of every ledger key.
+    [[nodiscard]] virtual std::string fingerprint() const = 0;
+    [[nodiscard]] virtual std::size_t sand_count() const = 0;
+};
+
+/// The real model for the named sands of the base cube config's dataset.
+std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands);
+
+/// The analytic stand-in (see analytic_model.cpp for its equations). `diverge_above_gpa` > 0
+/// makes every run with E* above it report a divergence (for the failure tests).
+std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise = 0.003, double diverge_above_gpa = 0.0);
+
+/// The exact text of the material's fields (hex floats), for keys and fingerprints.
+std::string material_key(const exp::MaterialParams& m);
+
+/// 64-bit FNV-1a of a text, as 16 hex digits.
+std::string fnv1a_hex(const std::string& text);
+
+}  // namespace gradem::cal

@@ -1,0 +1,147 @@
+// The real cube model: the base cube config's specimen and test, one cached packing per
+// (sand, seed), and exp::run_cube_test with the material of the request.
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "calibrate/cube_model.hpp"
+#include "calibrate/thread_pool.hpp"
+#include "experiments/packing_cache.hpp"
+#include "lab_data/input_error.hpp"
+
+namespace gradem::cal {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Timeout : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Every k-th point of the gauge-strain curve up to the end (about 200 points).
+void thin_curve(const exp::CubeTestResult& r, RunOutcome& out) {
+    const auto& c = r.test.curve;
+    const std::size_t every = std::max<std::size_t>(1, c.size() / 200);
+    for (std::size_t i = 0; i < c.size(); i += every) {
+        if (!std::isfinite(c[i].gauge_strain)) continue;
+        out.curve_strain.push_back(c[i].gauge_strain);
+        out.curve_stress_pa.push_back(c[i].stress);
+    }
+}
+
+class DemCubeModel final : public CubeModel {
+public:
+    DemCubeModel(exp::CubeConfig base, const std::vector<std::string>& sands) : base_(std::move(base)) {
+        names_ = sands;
+        for (const std::string& name : sands) {
+            exp::CubeConfig c = base_;
+            c.sand = name;
+            curves_.push_back(exp::load_gradation(c));
+        }
+    }
+
+    void prepare(const std::vector<std::uint64_t>& seeds, int workers,
+                 const std::function<void(const std::string&)>& log) override {
+        std::vector<std::pair<std::size_t, std::uint64_t>> cases;
+        for (std::size_t s = 0; s < curves_.size(); ++s)
+            for (std::uint64_t seed : seeds)
+                if (!packings_.count({s, seed})) cases.emplace_back(s, seed);
+        std::mutex mutex;
+        parallel_for(cases.size(), workers, [&](std::size_t k) {
+            const auto [s, seed] = cases[k];
+            exp::SpecimenSpec spec = base_.specimen;
+            spec.seed = seed;
+            bool cached = false;
+            exp::Packing p = exp::load_or_generate(curves_[s], spec, base_.cache_dir, &cached);
+            std::ostringstream line;
+            line << "packing of " << names_[s] << ", seed " << seed << ": "
+                 << p.radius.size() << " grains (" << (cached ? "cached" : "generated") << ")";
+            const std::lock_guard lock(mutex);
+            packings_.emplace(std::make_pair(s, seed), std::move(p));
+            if (log) log(line.str());
+        });
+    }
+
+    RunOutcome run(const RunRequest& q, double timeout_s) const override {
+        const auto it = packings_.find({q.sand, q.seed});
+        if (it == packings_.end()) throw std::logic_error("DemCubeModel::run: packing not prepared");
+        const exp::Packing& packing = it->second;
+        exp::CubeTestSpec spec = base_.test;
+        spec.snapshot = {};
+        spec.loading.platen_friction = q.material.platen_friction;
+        spec.loading.strain_rate = base_.auto_strain_rate ? exp::quasi_static_strain_rate(packing, q.material)
+                                                          : base_.test.loading.strain_rate;
+        const auto start = Clock::now();
+        exp::ProgressCallback watchdog;
+        if (timeout_s > 0.0)
+            watchdog = [start, timeout_s](const exp::CurvePoint&, double) {
+                if (std::chrono::duration<double>(Clock::now() - start).count() > timeout_s)
+                    throw Timeout("timed out after " + std::to_string(timeout_s) + " s");
+            };
+        RunOutcome out;
+        try {
+            const exp::CubeTestResult r = exp::run_cube_test(packing, q.material, spec, watchdog);
+            out.particles = static_cast<std::int64_t>(r.particles);
+            out.bonds = static_cast<std::int64_t>(r.bonds);
+            out.steps = r.test.steps;
+            out.modulus_pa = r.macro.chord_modulus_pa;
+            out.peak_pa = r.macro.peak_stress_pa;
+            out.strain_at_peak = r.macro.strain_at_peak;
+            out.poisson = r.macro.poisson_ratio;
+            thin_curve(r, out);
+            if (r.diverged()) {
+                out.status = RunStatus::diverged;
+                out.reason = r.test.stop_reason;
+            } else if (r.macro.status != lab::ReductionStatus::ok || !std::isfinite(out.modulus_pa)) {
+                out.status = RunStatus::failed;
+                out.reason = "curve not reducible: " + r.macro.message;
+            } else {
+                out.status = RunStatus::ok;
+            }
+        } catch (const Timeout& e) {
+            out.status = RunStatus::timeout;
+            out.reason = e.what();
+        } catch (const std::exception& e) {
+            out.status = RunStatus::failed;
+            out.reason = e.what();
+        }
+        out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        return out;
+    }
+
+    std::string fingerprint() const override {
+        std::ostringstream f;
+        f << "dem cube model v1; genesis v" << exp::kGenesisAlgorithmVersion << "; format v" << exp::kPackingFormatVersion;
+        for (const auto& curve : curves_) {
+            exp::SpecimenSpec spec = base_.specimen;
+            spec.seed = 0;  // seeds are part of each run key
+            f << "; packing " << std::hex << exp::packing_key(curve, spec) << std::dec;
+        }
+        const exp::PlatenTestSpec& l = base_.test.loading;
+        f << "; rate " << (base_.auto_strain_rate ? std::string("auto") : std::to_string(l.strain_rate)) << std::hexfloat
+          << "; ramp " << l.ramp_strain << "; stop " << l.stop_fraction << "; max " << l.max_strain << "; record "
+          << l.record_interval << "; gauge " << base_.test.gauge_length_fraction << " " << base_.test.slab_fraction << " "
+          << base_.test.core_fraction << "; settle " << base_.test.settle_ratio << " " << base_.test.max_settle_steps;
+        return f.str();
+    }
+
+    std::size_t sand_count() const override { return curves_.size(); }
+
+private:
+    exp::CubeConfig base_;
+    std::vector<std::string> names_;
+    std::vector<lab::GradationCurve> curves_;
+    std::map<std::pair<std::size_t, std::uint64_t>, exp::Packing> packings_;
+};
+
+}  // namespace
+
+std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands) {
+    return std::make_unique<DemCubeModel>(base, sands);
+}
+
+}  // namespace gradem::cal

@@ -1,0 +1,163 @@
+#include "calibrate/evaluator.hpp"
+
+#include <cmath>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "calibrate/thread_pool.hpp"
+
+namespace gradem::cal {
+
+Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
+                     std::string model_fingerprint, std::function<void(const Progress&)> progress)
+    : problem_(problem), space_(space), model_(model), ledger_(ledger), fingerprint_(std::move(model_fingerprint)),
+      progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {}
+
+double Evaluator::seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+std::string Evaluator::run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed) const {
+    return fnv1a_hex(fingerprint_ + "|sand " + problem_.sands[sand] + "|seed " + std::to_string(seed) + "|" + material_key(m));
+}
+
+std::string Evaluator::parameters_json(const std::vector<double>& values) const {
+    nlohmann::json j;
+    for (std::size_t k = 0; k < values.size(); ++k) j[space_.free(k).name] = values[k];
+    return j.dump();
+}
+
+int Evaluator::runs_needed(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands) const {
+    std::set<std::string> fresh;
+    for (const auto& p : points) {
+        const exp::MaterialParams m = space_.material(p);
+        for (std::size_t s : sands)
+            for (std::uint64_t seed : problem_.seeds)
+                if (const std::string key = run_key(m, s, seed); !used_.count(key)) fresh.insert(key);
+    }
+    return static_cast<int>(fresh.size());
+}
+
+SandOutcome Evaluator::summarise(std::size_t sand, const std::vector<RunOutcome>& runs) const {
+    SandOutcome s;
+    s.sand = sand;
+    std::vector<const RunOutcome*> good;
+    for (const RunOutcome& r : runs) {
+        if (r.ok()) good.push_back(&r);
+        else if (s.failed++ == 0) s.failure = std::string(to_string(r.status)) + ": " + r.reason;
+    }
+    s.ok = static_cast<int>(good.size());
+    for (Quantity q : kQuantities) {
+        const int k = static_cast<int>(q);
+        double sum = 0.0, sq = 0.0;
+        for (const RunOutcome* r : good) sum += q == Quantity::modulus ? r->modulus_pa : q == Quantity::peak ? r->peak_pa : r->strain_at_peak;
+        const double n = static_cast<double>(good.size());
+        s.mean[k] = n > 0 ? sum / n : std::nan("");
+        for (const RunOutcome* r : good) {
+            const double v = q == Quantity::modulus ? r->modulus_pa : q == Quantity::peak ? r->peak_pa : r->strain_at_peak;
+            sq += (v - s.mean[k]) * (v - s.mean[k]);
+        }
+        s.std[k] = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
+    }
+    double nu = 0.0;
+    int n_nu = 0;
+    for (const RunOutcome* r : good)
+        if (std::isfinite(r->poisson)) nu += r->poisson, ++n_nu;
+    s.poisson = n_nu ? nu / n_nu : std::nan("");
+    return s;
+}
+
+std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double>>& points,
+                                            const std::vector<std::size_t>& sands, const std::string& label) {
+    const int needed = runs_needed(points, sands);
+    if (needed > runs_remaining())
+        throw BudgetExhausted("budget: " + std::to_string(needed) + " more runs needed, " + std::to_string(runs_remaining()) +
+                              " of solver.max_runs = " + std::to_string(problem_.solver.max_runs) + " left");
+    // 1. Every run of every point: from the ledger, or queued.
+    struct Job {
+        std::size_t point, sand;
+        std::uint64_t seed;
+        exp::MaterialParams material;
+        std::string key;
+        RunOutcome outcome;
+        bool done = false;
+    };
+    std::vector<Job> jobs;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+        const exp::MaterialParams m = space_.material(points[p]);
+        for (std::size_t s : sands)
+            for (std::uint64_t seed : problem_.seeds) jobs.push_back({p, s, seed, m, run_key(m, s, seed), {}, false});
+    }
+    std::vector<std::size_t> queue;
+    std::set<std::string> queued;
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+        if (auto found = ledger_.find(jobs[j].key)) {
+            jobs[j].outcome = *found;
+            jobs[j].done = true;
+            if (used_.insert(jobs[j].key).second) ++served_;
+        } else if (queued.insert(jobs[j].key).second) {
+            queue.push_back(j);
+        }
+    }
+    // 2. Run the rest concurrently; record each run as soon as it ends.
+    std::mutex mutex;
+    const int evaluations = static_cast<int>(history_.size() + points.size());
+    parallel_for(queue.size(), problem_.workers, [&](std::size_t k) {
+        Job& job = jobs[queue[k]];
+        job.outcome = model_.run({job.sand, job.seed, job.material}, problem_.timeout_s);
+        ledger_.record(job.key, problem_.sands[job.sand], job.seed, parameters_json(points[job.point]), material_key(job.material),
+                       job.outcome);
+        const std::lock_guard lock(mutex);
+        job.done = true;
+        used_.insert(job.key);
+        ++executed_;
+        if (!job.outcome.ok()) ++failed_;
+        run_seconds_ += job.outcome.wall_seconds;
+        report(evaluations);
+    });
+    for (Job& job : jobs)  // duplicates of a queued run inside this batch
+        if (!job.done)
+            for (const Job& other : jobs)
+                if (other.done && other.key == job.key) job.outcome = other.outcome, job.done = true;
+    // 3. Per point: per-sand means over seeds; a point fails if any of its runs failed.
+    std::vector<Evaluation> out;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+        Evaluation e;
+        e.index = static_cast<int>(history_.size()) + 1;
+        e.values = points[p];
+        e.label = label;
+        for (std::size_t s : sands) {
+            std::vector<RunOutcome> runs;
+            for (const Job& job : jobs)
+                if (job.point == p && job.sand == s) runs.push_back(job.outcome);
+            e.sands.push_back(summarise(s, runs));
+            if (e.sands.back().failed && !e.failed) {
+                e.failed = true;
+                e.failure = problem_.sands[s] + ": " + e.sands.back().failure;
+            }
+            e.runs.insert(e.runs.end(), runs.begin(), runs.end());
+        }
+        e.runs_used = runs_used();
+        e.seconds = seconds();
+        history_.push_back(e);
+        out.push_back(std::move(e));
+    }
+    if (queue.empty()) report(static_cast<int>(history_.size()));  // served from the ledger: no line yet
+    return out;
+}
+
+void Evaluator::report(int evaluations) {
+    if (!progress_) return;
+    Progress p;
+    p.runs_used = runs_used();
+    p.max_runs = problem_.solver.max_runs;
+    p.from_ledger = served_;
+    p.evaluations = evaluations;
+    p.elapsed_s = seconds();
+    p.mean_run_s = executed_ ? run_seconds_ / executed_ : 0.0;
+    p.best_objective = best_objective_;
+    p.workers = problem_.workers;
+    progress_(p);
+}
+
+}  // namespace gradem::cal

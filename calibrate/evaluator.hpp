@@ -1,0 +1,100 @@
+#pragma once
+// Evaluations: a parameter point run on every packing seed of the requested sands (common random
+// numbers: the same packings for every point), served from the ledger when the identical run is
+// there, otherwise run on the worker threads and recorded at once. The budget counts distinct
+// runs of this calibration, from the ledger or not, so a resumed calibration takes the same path.
+#include <chrono>
+#include <functional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "calibrate/cube_model.hpp"
+#include "calibrate/ledger.hpp"
+#include "calibrate/parameters.hpp"
+#include "calibrate/problem.hpp"
+
+namespace gradem::cal {
+
+/// A sand's outputs over the seeds: mean and sample standard deviation, by Quantity.
+struct SandOutcome {
+    std::size_t sand = 0;
+    double mean[3] = {0, 0, 0}, std[3] = {0, 0, 0};
+    double poisson = 0.0;
+    int ok = 0, failed = 0;
+    std::string failure;  ///< the first failing run's status and reason
+    [[nodiscard]] double value(Quantity q) const { return mean[static_cast<int>(q)]; }
+};
+
+struct Evaluation {
+    int index = 0;                     ///< 1, 2, ... in the order requested
+    std::vector<double> values;        ///< free parameters, config units
+    std::vector<SandOutcome> sands;    ///< one per evaluated sand
+    std::vector<RunOutcome> runs;      ///< sand-major, then seed
+    bool failed = false;
+    std::string failure;
+    std::string label;                 ///< what the solver asked for ("start", "rescaled", "fd", ...)
+    int runs_used = 0;                 ///< budget used once this evaluation was done
+    double seconds = 0.0;              ///< wall time of the calibration when it was done [s]
+};
+
+class BudgetExhausted : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// What the progress line shows after each run.
+struct Progress {
+    int runs_used = 0, max_runs = 0, from_ledger = 0, evaluations = 0;
+    double elapsed_s = 0.0, mean_run_s = 0.0, best_objective = 0.0;
+    int workers = 1;
+};
+
+class Evaluator {
+public:
+    Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
+              std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
+
+    /// Evaluates every point on `sands` (indices into problem.sands); all their runs go to the
+    /// workers together. Throws BudgetExhausted (before running anything) when the new
+    /// distinct runs would exceed solver.max_runs.
+    std::vector<Evaluation> evaluate(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands,
+                                     const std::string& label);
+    Evaluation evaluate(const std::vector<double>& point, const std::vector<std::size_t>& sands, const std::string& label) {
+        return evaluate(std::vector<std::vector<double>>{point}, sands, label).front();
+    }
+
+    /// Distinct runs that evaluating `points` would add to the budget.
+    [[nodiscard]] int runs_needed(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands) const;
+    [[nodiscard]] int runs_used() const { return static_cast<int>(used_.size()); }
+    [[nodiscard]] int runs_remaining() const { return problem_.solver.max_runs - reserve_ - runs_used(); }
+    /// Runs kept back from the solvers (e.g. for the study's prediction); 0 releases them.
+    void set_reserve(int runs) { reserve_ = runs; }
+    [[nodiscard]] int runs_executed() const { return executed_; }
+    [[nodiscard]] int runs_from_ledger() const { return served_; }
+    [[nodiscard]] int runs_failed() const { return failed_; }
+    [[nodiscard]] const std::vector<Evaluation>& history() const { return history_; }
+    void note_best(double objective) { best_objective_ = objective; }
+    [[nodiscard]] double seconds() const;
+
+private:
+    std::string run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed) const;
+    std::string parameters_json(const std::vector<double>& values) const;
+    SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs) const;
+    void report(int evaluations);
+
+    const CalibrationProblem& problem_;
+    const ParameterSpace& space_;
+    const CubeModel& model_;
+    Ledger& ledger_;
+    std::string fingerprint_;
+    std::function<void(const Progress&)> progress_;
+    std::set<std::string> used_;
+    int executed_ = 0, served_ = 0, failed_ = 0, reserve_ = 0;
+    double run_seconds_ = 0.0, best_objective_ = 0.0;
+    std::vector<Evaluation> history_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace gradem::cal

@@ -1,0 +1,337 @@
+#include "calibrate/problem.hpp"
+
+#include "calibrate/cube_model.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "experiments/toml_section.hpp"
+#include "lab_data/input_error.hpp"
+
+namespace gradem::cal {
+namespace {
+
+namespace fs = std::filesystem;
+using lab::InputError;
+using namespace exp::toml_io;
+
+const std::vector<std::string> kTables = {"calibration", "targets", "parameters", "solver", "run", "output"};
+const std::vector<std::string> kDefaultFree = {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"};
+
+std::vector<std::string> read_strings(Section& s, const char* key, std::vector<std::string> fallback) {
+    const toml::node* n = s.node(key);
+    if (!n) return fallback;
+    if (!n->is_array()) s.type_error(key, *n, "an array of strings");
+    std::vector<std::string> out;
+    for (const toml::node& item : *n->as_array()) {
+        if (!item.is_string()) s.type_error(key, *n, "an array of strings");
+        out.push_back(item.as_string()->get());
+    }
+    s.record(key, *n, false);
+    return out;
+}
+
+std::vector<std::uint64_t> read_seeds(Section& s, const char* key, std::vector<std::uint64_t> fallback) {
+    const toml::node* n = s.node(key);
+    if (!n) return fallback;
+    if (!n->is_array() || n->as_array()->empty()) s.type_error(key, *n, "a non-empty array of positive integers");
+    std::vector<std::uint64_t> out;
+    for (const toml::node& item : *n->as_array()) {
+        if (!item.is_integer() || item.as_integer()->get() < 1) s.type_error(key, *n, "a non-empty array of positive integers");
+        const auto v = static_cast<std::uint64_t>(item.as_integer()->get());
+        if (std::find(out.begin(), out.end(), v) != out.end()) s.type_error(key, *n, "distinct seeds");
+        out.push_back(v);
+    }
+    s.record(key, *n, false);
+    return out;
+}
+
+Mode parse_mode(const std::string& text, Context& ctx) {
+    if (text == "joint") return Mode::joint;
+    if (text == "per_sand") return Mode::per_sand;
+    if (text == "study") return Mode::study;
+    throw InputError(ctx.file, ctx.keys["calibration.mode"].line,
+                     "key 'calibration.mode' = \"" + text + "\": expected \"joint\", \"per_sand\" or \"study\"");
+}
+
+Method parse_method(const std::string& text, Context& ctx) {
+    static const std::pair<const char*, Method> methods[] = {{"scaling", Method::scaling}, {"bobyqa", Method::bobyqa},
+                                                             {"sbplx", Method::sbplx},     {"cobyla", Method::cobyla},
+                                                             {"crs2", Method::crs2},       {"direct", Method::direct},
+                                                             {"ceres", Method::ceres}};
+    for (const auto& [name, m] : methods)
+        if (text == name) return m;
+    throw InputError(ctx.file, ctx.keys["solver.method"].line,
+                     "key 'solver.method' = \"" + text +
+                         "\": unknown solver (known: scaling, bobyqa, sbplx, cobyla, crs2, direct, ceres)");
+}
+
+void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    Section s(ctx, root, "calibration");
+    fs::path base;
+    s.path("base", base);
+    s.text("model", p.model);
+    std::string mode = "joint";
+    s.text("mode", mode);
+    p.sands = read_strings(s, "sands", {"pre-blended", "Van Buren"});
+    s.text("calibrate_on", p.calibrate_on);
+    p.seeds = read_seeds(s, "seeds", p.seeds);
+    s.finish();
+    p.mode = parse_mode(mode, ctx);
+    if (p.model != "dem" && p.model != "analytic")
+        throw InputError(ctx.file, ctx.keys["calibration.model"].line,
+                         "key 'calibration.model' = \"" + p.model + "\": expected \"dem\" or \"analytic\" (the test stand-in)");
+    if (base.empty()) throw InputError(ctx.file, 0, "key 'calibration.base' is required: the cube config (specimen, start material, test)");
+    if (!fs::exists(base))
+        throw InputError(ctx.file, ctx.keys["calibration.base"].line, "key 'calibration.base': file " + base.string() + " not found");
+    p.base = exp::load_cube_config(base);
+    if (p.sands.empty()) throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' is empty");
+    const std::set<std::string> unique(p.sands.begin(), p.sands.end());
+    if (unique.size() != p.sands.size())
+        throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' names a sand twice");
+    if (p.mode == Mode::study) {
+        if (p.calibrate_on.empty()) p.calibrate_on = p.sands.front();
+        if (!unique.count(p.calibrate_on))
+            throw InputError(ctx.file, ctx.keys["calibration.calibrate_on"].line,
+                             "key 'calibration.calibrate_on' = \"" + p.calibrate_on + "\" is not one of calibration.sands");
+        if (p.sands.size() < 2)
+            throw InputError(ctx.file, ctx.keys["calibration.mode"].line, "mode \"study\" needs a second sand to predict");
+    }
+}
+
+void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    std::map<std::string, ParameterSpec> specs;
+    for (const std::string& name : kDefaultFree) {
+        specs[name] = default_parameter(name, p.base.material);
+        specs[name].free = true;
+    }
+    if (const toml::node* n = root.get("parameters")) {
+        if (!n->is_table()) throw InputError(ctx.file, line_of(*n), "'parameters' must be a table of [parameters.<name>] tables");
+        for (auto&& [key, node] : *n->as_table()) {
+            const std::string name(key.str());
+            if (!is_known_parameter(name)) {
+                std::string known;
+                for (const auto& k : parameter_names()) known += (known.empty() ? "" : ", ") + k;
+                throw InputError(ctx.file, line_of(node), "unknown parameter '" + name + "' (known: " + known + ")");
+            }
+            if (!node.is_table()) throw InputError(ctx.file, line_of(node), "'parameters." + name + "' must be a table");
+            ParameterSpec spec = specs.count(name) ? specs[name] : default_parameter(name, p.base.material);
+            Section s(ctx, *n->as_table(), name);
+            s.boolean("free", spec.free);
+            s.real("start", spec.start);
+            s.real("lower", spec.lower);
+            s.real("upper", spec.upper);
+            std::string scale = spec.log_scale ? "log" : "linear";
+            s.text("scale", scale);
+            s.finish();
+            spec.line = line_of(node);
+            const std::string where = "parameters." + name;
+            if (scale != "log" && scale != "linear")
+                throw InputError(ctx.file, ctx.keys[name + ".scale"].line, "key '" + where + ".scale' = \"" + scale + "\": expected \"log\" or \"linear\"");
+            spec.log_scale = scale == "log";
+            if (!(spec.lower < spec.upper))
+                throw InputError(ctx.file, spec.line, "[" + where + "] lower = " + show(spec.lower) + " must be < upper = " + show(spec.upper));
+            if (spec.log_scale && !(spec.lower > 0.0))
+                throw InputError(ctx.file, spec.line, "[" + where + "] scale = \"log\" needs lower > 0 (got " + show(spec.lower) + ")");
+            if (spec.free && !(spec.start >= spec.lower && spec.start <= spec.upper))
+                throw InputError(ctx.file, spec.line, "[" + where + "] start = " + show(spec.start) + " is outside [lower, upper] = [" +
+                                                          show(spec.lower) + ", " + show(spec.upper) + "]");
+            specs[name] = spec;
+        }
+    }
+    if (specs.count("cohesion_mpa") && specs.count("cohesion_ratio") && specs["cohesion_mpa"].free && specs["cohesion_ratio"].free)
+        throw InputError(ctx.file, specs["cohesion_mpa"].line, "free parameters cohesion_mpa and cohesion_ratio exclude each other: set one free = false");
+    if (specs.count("cohesion_mpa") && specs["cohesion_mpa"].free) specs.erase("cohesion_ratio");
+    if (specs.count("bond_gap_um") && specs.count("bond_gap_fraction") && specs["bond_gap_um"].free && specs["bond_gap_fraction"].free)
+        throw InputError(ctx.file, specs["bond_gap_um"].line, "free parameters bond_gap_um and bond_gap_fraction exclude each other");
+    for (auto& [name, spec] : specs) p.parameters.push_back(spec);
+    // Every parameter must give a valid material at its bounds' corners that matter: check the start.
+    const ParameterSpace space(p.parameters, p.base.material);
+    if (space.size() == 0) throw InputError(ctx.file, 0, "no free parameter: set free = true in a [parameters.<name>] table");
+    if (auto why = space.material(space.start()).invalid_reason())
+        throw InputError(ctx.file, 0, "the start parameters give an invalid material: " + *why);
+}
+
+void read_targets(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    Section s(ctx, root, "targets");
+    s.path("lab_results", p.lab_results);
+    s.real("modulus_weight", p.weights.modulus);
+    s.real("peak_weight", p.weights.peak);
+    s.real("strain_weight", p.weights.strain);
+    s.finish();
+    for (const char* k : {"modulus_weight", "peak_weight", "strain_weight"}) {
+        const double w = k[0] == 'm' ? p.weights.modulus : k[0] == 'p' ? p.weights.peak : p.weights.strain;
+        if (!(w >= 0.0 && std::isfinite(w)))
+            throw InputError(ctx.file, ctx.keys[std::string("targets.") + k].line, std::string("key 'targets.") + k + "' must be >= 0");
+    }
+    if (p.weights.modulus + p.weights.peak + p.weights.strain <= 0.0)
+        throw InputError(ctx.file, ctx.keys["targets.modulus_weight"].line, "all target weights are zero");
+    if (p.lab_results.empty())
+        throw InputError(ctx.file, 0, "key 'targets.lab_results' is required: the lab_results.json written by `gradem lab <dataset> --out DIR`");
+    if (!fs::exists(p.lab_results))
+        throw InputError(ctx.file, ctx.keys["targets.lab_results"].line,
+                         "key 'targets.lab_results': " + p.lab_results.string() + " not found; run `gradem lab <dataset> --out DIR` first");
+    p.targets = read_lab_targets(p.lab_results, p.sands, &p.representative, &p.lab_note);
+}
+
+void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    Section s(ctx, root, "solver");
+    std::string method = "scaling";
+    s.text("method", method);
+    SolverSettings& v = p.solver;
+    s.integer("max_runs", v.max_runs, 1);
+    s.real("tolerance", v.tolerance);
+    s.real("fd_step", v.fd_step);
+    s.real("homogeneity_tolerance", v.homogeneity_tolerance);
+    s.real("penalty", v.penalty);
+    s.integer("seed", v.seed, 0);
+    s.finish();
+    v.method = parse_method(method, ctx);
+    auto bad = [&](const char* key, const std::string& rule) {
+        throw InputError(ctx.file, ctx.keys[std::string("solver.") + key].line, std::string("key 'solver.") + key + "' " + rule);
+    };
+    if (!(v.tolerance > 0.0 && v.tolerance < 0.5)) bad("tolerance", "must be in (0, 0.5)");
+    if (!(v.fd_step > 0.0 && v.fd_step <= 0.25)) bad("fd_step", "must be in (0, 0.25]");
+    if (!(v.homogeneity_tolerance > 0.0 && v.homogeneity_tolerance < 1.0)) bad("homogeneity_tolerance", "must be in (0, 1)");
+    if (!(v.penalty > 0.0)) bad("penalty", "must be > 0");
+
+    Section r(ctx, root, "run");
+    r.integer("workers", p.workers, 1);
+    r.real("timeout_s", p.timeout_s);
+    r.finish();
+    if (p.workers > 64) throw InputError(ctx.file, ctx.keys["run.workers"].line, "key 'run.workers' must be in [1, 64]");
+    if (!(p.timeout_s >= 0.0)) throw InputError(ctx.file, ctx.keys["run.timeout_s"].line, "key 'run.timeout_s' must be >= 0 (0: no limit)");
+}
+
+void read_output(Context& ctx, const toml::table& root, CalibrationProblem& p, const std::string& stem) {
+    Section s(ctx, root, "output");
+    p.out_dir = (ctx.dir / "out" / stem).lexically_normal();
+    s.path("dir", p.out_dir);
+    s.path("ledger", p.ledger);
+    s.finish();
+    if (p.ledger.empty()) p.ledger = p.out_dir / "ledger.sqlite";
+}
+
+std::string exact(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+TargetStat read_stat(const nlohmann::json& sand, const char* key, double to_si, const std::string& file, const std::string& name) {
+    if (!sand.contains(key) || !sand[key].is_object() || !sand[key].contains("mean"))
+        throw InputError(file, 0, "sand '" + name + "': no '" + key + "' statistics (is this a lab_results.json of `gradem lab`?)");
+    const auto& j = sand[key];
+    TargetStat t;
+    t.mean = j["mean"].is_number() ? j["mean"].get<double>() * to_si : std::nan("");
+    t.std = j.contains("std") && j["std"].is_number() ? j["std"].get<double>() * to_si : std::nan("");
+    t.n = j.contains("n") && j["n"].is_number_integer() ? j["n"].get<int>() : 0;
+    if (!(std::isfinite(t.mean) && t.mean > 0.0))
+        throw InputError(file, 0, "sand '" + name + "': " + key + ".mean is missing or not positive - the lab results are inconsistent");
+    if (t.n < 1) throw InputError(file, 0, "sand '" + name + "': " + key + ".n = " + std::to_string(t.n) + " (no cubes reduced)");
+    if (std::isfinite(t.std) && t.std < 0.0) throw InputError(file, 0, "sand '" + name + "': " + key + ".std is negative");
+    return t;
+}
+
+}  // namespace
+
+const char* to_string(Mode m) {
+    return m == Mode::joint ? "joint" : m == Mode::per_sand ? "per_sand" : "study";
+}
+
+const char* to_string(Method m) {
+    switch (m) {
+        case Method::scaling: return "scaling";
+        case Method::bobyqa: return "bobyqa";
+        case Method::sbplx: return "sbplx";
+        case Method::cobyla: return "cobyla";
+        case Method::crs2: return "crs2";
+        case Method::direct: return "direct";
+        case Method::ceres: return "ceres";
+    }
+    return "?";
+}
+
+const char* to_string(Quantity q) {
+    return q == Quantity::modulus ? "modulus" : q == Quantity::peak ? "peak_stress" : "strain_at_peak";
+}
+
+const TargetStat& target_of(const SandTargets& t, Quantity q) {
+    return q == Quantity::modulus ? t.modulus : q == Quantity::peak ? t.peak : t.strain;
+}
+
+std::vector<SandTargets> read_lab_targets(const fs::path& json_file, const std::vector<std::string>& sands,
+                                          bool* representative, std::string* note) {
+    std::ifstream in(json_file);
+    if (!in) throw InputError(json_file.string(), 0, "cannot read the lab results");
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError(json_file.string(), 0, std::string("not valid JSON: ") + e.what());
+    }
+    if (!j.is_object() || !j.contains("sands") || !j["sands"].is_array())
+        throw InputError(json_file.string(), 0, "no 'sands' array: expected the lab_results.json written by `gradem lab`");
+    if (representative) *representative = j.contains("representative_data") && j["representative_data"].is_boolean() &&
+                                          j["representative_data"].get<bool>();
+    if (note && j.contains("note") && j["note"].is_string()) *note = j["note"].get<std::string>();
+    std::vector<SandTargets> out;
+    for (const std::string& name : sands) {
+        const nlohmann::json* found = nullptr;
+        std::string names;
+        for (const auto& s : j["sands"]) {
+            const std::string n = s.value("name", "");
+            names += (names.empty() ? "'" : ", '") + n + "'";
+            if (n == name) found = &s;
+        }
+        if (!found) throw InputError(json_file.string(), 0, "sand '" + name + "' is not in the lab results (sands: " + names + ")");
+        SandTargets t;
+        t.name = name;
+        t.modulus = read_stat(*found, "chord_modulus_mpa", 1e6, json_file.string(), name);
+        t.peak = read_stat(*found, "peak_stress_mpa", 1e6, json_file.string(), name);
+        t.strain = read_stat(*found, "strain_at_peak", 1.0, json_file.string(), name);
+        out.push_back(t);
+    }
+    return out;
+}
+
+std::string CalibrationProblem::describe() const {
+    std::ostringstream d;
+    d << "model = " << model << "\nmode = " << to_string(mode) << "\nsands =";
+    for (const auto& s : sands) d << " '" << s << "'";
+    d << "\ncalibrate_on = " << calibrate_on << "\nseeds =";
+    for (auto s : seeds) d << " " << s;
+    d << "\nbase material = " << material_key(base.material) << "\n";
+    for (const auto& q : parameters)
+        d << "parameter " << q.name << " = " << (q.free ? "free" : "fixed") << " start " << exact(q.start) << " bounds "
+          << exact(q.lower) << " " << exact(q.upper) << " " << (q.log_scale ? "log" : "linear") << "\n";
+    for (const auto& t : targets)
+        for (Quantity q : kQuantities)
+            d << "target " << t.name << " " << to_string(q) << " = " << exact(target_of(t, q).mean) << " +- "
+              << exact(target_of(t, q).std) << "\n";
+    d << "weights = " << exact(weights.modulus) << " " << exact(weights.peak) << " " << exact(weights.strain) << "\n";
+    d << "solver = " << to_string(solver.method) << " tolerance " << exact(solver.tolerance) << " fd_step "
+      << exact(solver.fd_step) << " homogeneity " << exact(solver.homogeneity_tolerance) << " penalty "
+      << exact(solver.penalty) << " seed " << solver.seed << "\ntimeout_s = " << exact(timeout_s) << "\n";
+    return d.str();
+}
+
+CalibrationProblem load_calibration_problem(const fs::path& toml_file) {
+    Context ctx;
+    const toml::table root = parse_toml_file(toml_file, ctx);
+    CalibrationProblem p;
+    p.file = toml_file;
+    check_tables(ctx, root, kTables);
+    read_calibration(ctx, root, p);
+    read_parameters(ctx, root, p);
+    read_targets(ctx, root, p);
+    read_solver(ctx, root, p);
+    read_output(ctx, root, p, toml_file.stem().string());
+    return p;
+}
+
+}  // namespace gradem::cal

@@ -1,0 +1,360 @@
+#include "calibrate/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "calibrate/objective.hpp"
+#include "reports/atomic_file.hpp"
+
+namespace gradem::cal {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMetTolerance = 0.05;  // a target counts as met within 5 % of the lab mean
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+/// Display scale and unit of a quantity.
+double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
+const char* unit(Quantity q) { return q == Quantity::strain ? "-" : "MPa"; }
+const char* label(Quantity q) { return q == Quantity::modulus ? "chord modulus" : q == Quantity::peak ? "peak stress" : "strain at peak"; }
+
+std::string fmt(double v, int digits = 4) {
+    if (!std::isfinite(v)) return "-";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    return buf;
+}
+
+std::string pct(double v) {
+    if (!std::isfinite(v)) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%+.1f %%", 100.0 * v);
+    return buf;
+}
+
+struct TargetRow {
+    std::string stage, sand, role;
+    Quantity q;
+    TargetStat lab;
+    double sim_mean, sim_std;
+    int sim_n;
+    double rel_error, z;
+};
+
+std::vector<TargetRow> target_rows(const CalibrationProblem& p, const CalibrationStage& st) {
+    std::vector<TargetRow> rows;
+    auto add = [&](std::size_t s, const char* role) {
+        const SandOutcome* o = st.outcome(s);
+        for (Quantity q : kQuantities) {
+            TargetRow r{st.label, p.sands[s], role, q, target_of(p.targets[s], q), std::nan(""), std::nan(""), 0, std::nan(""), std::nan("")};
+            if (o && o->ok > 0) {
+                const int k = static_cast<int>(q);
+                r.sim_mean = o->mean[k];
+                r.sim_std = o->std[k];
+                r.sim_n = o->ok;
+                r.rel_error = r.sim_mean / r.lab.mean - 1.0;
+                r.z = z_score(r.sim_mean, r.sim_std, r.sim_n, r.lab);
+            }
+            rows.push_back(r);
+        }
+    };
+    for (std::size_t s : st.fitted) add(s, "fitted");
+    for (std::size_t s : st.predicted) add(s, "predicted");
+    return rows;
+}
+
+json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
+    const ParameterSpace space(p.parameters, p.base.material);
+    json out = json::array();
+    for (const ParameterSpec& spec : space.all()) {
+        json j = {{"name", spec.name}, {"unit", spec.unit()}, {"free", spec.free}};
+        if (!spec.free) {
+            j["value"] = spec.start;
+        } else {
+            const std::size_t k = *space.index_of(spec.name);
+            j["value"] = st.solution.best.empty() ? json(nullptr) : json(st.solution.best[k]);
+            j["start"] = spec.start;
+            j["lower"] = spec.lower;
+            j["upper"] = spec.upper;
+            j["scale"] = spec.log_scale ? "log" : "linear";
+            const Uncertainty& u = st.uncertainty;
+            if (u.computed) {
+                j["std_error"] = spec.log_scale ? json{{"relative", number(u.std_error_natural[k])}}
+                                                : json{{"absolute", number(u.std_error_natural[k])}};
+                j["one_sigma_interval"] = {number(u.low[k]), number(u.high[k])};
+            }
+        }
+        out.push_back(j);
+    }
+    return out;
+}
+
+/// E ε / σ: the shape index the homogeneity leaves to the shape parameters.
+double shape_index(double e, double sigma, double eps) { return e * eps / sigma; }
+
+std::vector<std::string> unmet_statements(const CalibrationProblem& p, const CalibrationStage& st) {
+    std::vector<std::string> out;
+    for (const TargetRow& r : target_rows(p, st)) {
+        if (!std::isfinite(r.rel_error) || std::fabs(r.rel_error) <= kMetTolerance) continue;
+        std::ostringstream s;
+        s << r.sand << " " << label(r.q) << " (" << r.role << "): simulated " << fmt(r.sim_mean * display(r.q)) << " vs lab "
+          << fmt(r.lab.mean * display(r.q)) << " " << unit(r.q) << " (" << pct(r.rel_error) << ")";
+        if (r.q == Quantity::strain) {
+            const std::size_t si = static_cast<std::size_t>(std::find(p.sands.begin(), p.sands.end(), r.sand) - p.sands.begin());
+            const SandTargets& t = p.targets[si];
+            const SandOutcome* so = st.outcome(si);
+            if (so) {
+                const double d_sim = shape_index(so->value(Quantity::modulus), so->value(Quantity::peak), so->value(Quantity::strain));
+                const double d_lab = shape_index(t.modulus.mean, t.peak.mean, t.strain.mean);
+                s << ". The model cannot meet it: its shape index D = E·ε/σ is " << fmt(d_sim, 3) << " against the lab's "
+                  << fmt(d_lab, 3) << " - bonded-particle specimens are near-linear (brittle) to the peak, so with E and "
+                                      "peak matched the strain at peak is D_sim/D_lab = "
+                  << pct(d_sim / d_lab - 1.0) << " off; this is the best compromise the weights allow (model-form error, "
+                                                 "not an optimiser failure)";
+            }
+        } else if (r.role == "predicted") {
+            s << " - a prediction, not a fit";
+        } else if (p.mode == Mode::joint) {
+            s << " - with one parameter set for all sands the model cannot reproduce the lab's difference between the sands in this quantity";
+        }
+        out.push_back(s.str());
+    }
+    return out;
+}
+
+json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
+    json targets = json::array();
+    for (const TargetRow& r : target_rows(p, st))
+        targets.push_back({{"sand", r.sand}, {"role", r.role}, {"quantity", to_string(r.q)}, {"unit", unit(r.q)},
+                           {"lab_mean", number(r.lab.mean * display(r.q))}, {"lab_std", number(r.lab.std * display(r.q))},
+                           {"lab_n", r.lab.n}, {"sim_mean", number(r.sim_mean * display(r.q))},
+                           {"sim_std", number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", number(r.rel_error)},
+                           {"z", number(r.z)}, {"met", std::isfinite(r.rel_error) && std::fabs(r.rel_error) <= kMetTolerance}});
+    const SolveResult& s = st.solution;
+    const Uncertainty& u = st.uncertainty;
+    json j = {{"label", st.label},
+              {"method", s.method},
+              {"stop_reason", s.stop_reason},
+              {"budget_exhausted", s.budget_exhausted},
+              {"objective", s.best_objective},
+              {"best_evaluation", s.best_eval.index},
+              {"parameters", parameters_json(p, st)},
+              {"targets", targets},
+              {"noise_floor_rel_se", {{"modulus", st.noise_floor[0]}, {"peak_stress", st.noise_floor[1]}, {"strain_at_peak", st.noise_floor[2]}}},
+              {"identifiability", {{"computed", u.computed}, {"note", u.note}, {"singular_values", u.singular_values},
+                                   {"condition_number", number(u.condition)}, {"poorly_identified", u.poorly_identified},
+                                   {"difference_runs", u.fd_runs}}},
+              {"notes", s.notes},
+              {"unmet_targets", unmet_statements(p, st)}};
+    if (s.homogeneity.done)
+        j["homogeneity"] = {{"holds", s.homogeneity.holds}, {"alpha", s.homogeneity.alpha}, {"beta", s.homogeneity.beta},
+                            {"modulus_deviation", s.homogeneity.modulus_deviation}, {"peak_deviation", s.homogeneity.peak_deviation},
+                            {"strain_deviation", s.homogeneity.strain_deviation}, {"tolerance", p.solver.homogeneity_tolerance}};
+    if (!st.prediction.sands.empty() && st.prediction.failed) j["prediction_failure"] = st.prediction.failure;
+    return j;
+}
+
+std::string clock_text(double seconds) {
+    char buf[32];
+    const long s = std::lround(seconds);
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+    return buf;
+}
+
+}  // namespace
+
+json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
+    json stages = json::array(), all_targets = json::array();
+    for (const CalibrationStage& st : r.stages) {
+        stages.push_back(stage_json(p, st));
+        for (auto t : stages.back()["targets"]) {
+            t["stage"] = st.label;
+            all_targets.push_back(t);
+        }
+    }
+    json seeds = p.seeds;
+    return {{"schema", "gradem-calibration/1"},
+            {"config", p.file.string()},
+            {"model", p.model},
+            {"mode", to_string(p.mode)},
+            {"solver", to_string(p.solver.method)},
+            {"sands", p.sands},
+            {"packing_seeds", seeds},
+            {"lab_results", p.lab_results.string()},
+            {"representative_lab_data", p.representative},
+            {"lab_note", p.lab_note},
+            {"dem_test_runs", r.runs_used},
+            {"runs", {{"total", r.runs_used}, {"executed_now", r.runs_executed}, {"from_ledger", r.runs_from_ledger},
+                      {"failed", r.runs_failed}, {"budget", p.solver.max_runs}}},
+            {"evaluations", r.history.size()},
+            {"wall_seconds", r.wall_seconds},
+            {"ledger", p.ledger.string()},
+            {"problem_fingerprint", r.fingerprint},
+            {"code_version", code_version()},
+            {"parameters", stages.empty() ? json::array() : stages[0]["parameters"]},
+            {"targets", all_targets},
+            {"stages", stages}};
+}
+
+std::string summary_markdown(const CalibrationProblem& p, const CalibrationResult& r) {
+    std::ostringstream md;
+    md << "# gradem calibration: " << p.file.filename().string() << "\n\n";
+    if (p.representative)
+        md << "> **The lab data are REPRESENTATIVE, not measurements.** " << p.lab_note << "\n\n";
+    md << "- mode **" << to_string(p.mode) << "**, solver **" << to_string(p.solver.method) << "**, model " << p.model << "\n"
+       << "- sands: ";
+    for (std::size_t s = 0; s < p.sands.size(); ++s) md << (s ? ", " : "") << p.sands[s];
+    md << "; packing seeds per sand: " << p.seeds.size() << " (the same packings for every parameter set)\n"
+       << "- DEM test runs: **" << r.runs_used << "** of a budget of " << p.solver.max_runs << " (" << r.runs_executed
+       << " run now, " << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed); " << r.history.size()
+       << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n"
+       << "- targets: " << p.lab_results.string() << "; weights: modulus " << p.weights.modulus << ", peak " << p.weights.peak
+       << ", strain " << p.weights.strain << "\n\n";
+    for (const CalibrationStage& st : r.stages) {
+        const SolveResult& s = st.solution;
+        md << "## " << st.label << "\n\n"
+           << "Solver path: " << s.method << "; stop: " << s.stop_reason << "; objective Σr² = " << fmt(s.best_objective) << "\n\n";
+        if (s.homogeneity.done)
+            md << "Homogeneity check on the actual specimens (moduli × " << fmt(s.homogeneity.alpha) << ", strengths × "
+               << fmt(s.homogeneity.beta) << "): predicted vs run E " << pct(s.homogeneity.modulus_deviation) << ", peak "
+               << pct(s.homogeneity.peak_deviation) << ", strain " << pct(s.homogeneity.strain_deviation) << " - "
+               << (s.homogeneity.holds ? "holds" : "does not hold") << ".\n\n";
+        md << "| parameter | value | ± 1 s.e. | bounds | free |\n|---|---|---|---|---|\n";
+        const ParameterSpace space(p.parameters, p.base.material);
+        for (const ParameterSpec& spec : space.all()) {
+            if (!spec.free) {
+                md << "| " << spec.name << " | " << fmt(spec.start) << " " << spec.unit() << " | | | fixed |\n";
+                continue;
+            }
+            const std::size_t k = *space.index_of(spec.name);
+            const double v = s.best.empty() ? std::nan("") : s.best[k];
+            std::string se = "-";
+            if (st.uncertainty.computed)
+                se = spec.log_scale ? pct(st.uncertainty.std_error_natural[k]).substr(1) : fmt(st.uncertainty.std_error_natural[k], 3);
+            md << "| " << spec.name << " | " << fmt(v) << " " << spec.unit() << " | " << se << " | [" << fmt(spec.lower) << ", "
+               << fmt(spec.upper) << "] " << (spec.log_scale ? "log" : "linear") << " | free |\n";
+        }
+        md << "\n| sand | target | role | lab mean ± std | simulated mean ± seed spread | rel. error | z |\n"
+              "|---|---|---|---|---|---|---|\n";
+        for (const TargetRow& row : target_rows(p, st))
+            md << "| " << row.sand << " | " << label(row.q) << " [" << unit(row.q) << "] | " << row.role << " | "
+               << fmt(row.lab.mean * display(row.q)) << " ± " << fmt(row.lab.std * display(row.q), 2) << " | "
+               << fmt(row.sim_mean * display(row.q)) << " ± " << fmt(row.sim_std * display(row.q), 2) << " | " << pct(row.rel_error)
+               << " | " << fmt(row.z, 2) << " |\n";
+        md << "\nNoise floor (relative standard error of the seed mean): modulus " << pct(st.noise_floor[0]).substr(1)
+           << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1) << ".\n\n";
+        const Uncertainty& u = st.uncertainty;
+        if (u.computed) {
+            md << "Identifiability: singular values of the lab-normalised Jacobian (unit-box columns) ";
+            for (std::size_t k = 0; k < u.singular_values.size(); ++k) md << (k ? ", " : "") << fmt(u.singular_values[k], 3);
+            md << "; condition number " << fmt(u.condition, 3) << ".";
+            if (u.poorly_identified.empty()) md << " Every free parameter is pinned down by the targets.\n\n";
+            else {
+                md << " **The data cannot pin down:**\n\n";
+                for (const auto& w : u.poorly_identified) md << "- " << w << "\n";
+                md << "\n";
+            }
+        } else {
+            md << "Uncertainty: " << u.note << "\n\n";
+        }
+        const auto unmet = unmet_statements(p, st);
+        if (unmet.empty()) md << "Every target is met within 5 % of the lab mean.\n\n";
+        else {
+            md << "**Targets not met within 5 %:**\n\n";
+            for (const auto& w : unmet) md << "- " << w << "\n";
+            md << "\n";
+        }
+        for (const auto& n : s.notes) md << "- note: " << n << "\n";
+    }
+    return md.str();
+}
+
+std::string convergence_csv(const CalibrationProblem& p, const CalibrationResult& r) {
+    const ParameterSpace space(p.parameters, p.base.material);
+    std::ostringstream c;
+    c.precision(10);
+    c << "evaluation,label,runs_used,wall_seconds,objective,failed";
+    for (std::size_t k = 0; k < space.size(); ++k) c << "," << space.free(k).name;
+    for (const auto& sand : p.sands)
+        for (Quantity q : kQuantities) c << ",\"" << sand << " " << to_string(q) << (q == Quantity::strain ? "" : "_mpa") << "\"";
+    c << "\n";
+    for (const Evaluation& e : r.history) {
+        c << e.index << "," << e.label << "," << e.runs_used << "," << e.seconds << "," << objective(e, p) << ","
+          << (e.failed ? 1 : 0);
+        for (double v : e.values) c << "," << v;
+        for (std::size_t s = 0; s < p.sands.size(); ++s)
+            for (Quantity q : kQuantities) {
+                c << ",";
+                for (const SandOutcome& o : e.sands)
+                    if (o.sand == s && std::isfinite(o.value(q))) c << o.value(q) * display(q);
+            }
+        c << "\n";
+    }
+    return c.str();
+}
+
+std::string curves_csv(const CalibrationProblem& p, const CalibrationResult& r) {
+    std::ostringstream c;
+    c.precision(8);
+    c << "stage,sand,source,seed,strain,stress_mpa\n";
+    for (const CalibrationStage& st : r.stages) {
+        std::vector<std::size_t> sands = st.fitted;
+        sands.insert(sands.end(), st.predicted.begin(), st.predicted.end());
+        for (std::size_t s : sands) {
+            if (const Evaluation* e = st.evaluation_of(s)) {
+                std::size_t run = 0;
+                for (std::size_t k = 0; k < e->sands.size(); ++k) {
+                    for (std::uint64_t seed : p.seeds) {
+                        const RunOutcome& o = e->runs[run++];
+                        if (e->sands[k].sand != s) continue;
+                        for (std::size_t i = 0; i < o.curve_strain.size(); ++i)
+                            c << "\"" << st.label << "\",\"" << p.sands[s] << "\",simulated," << seed << "," << o.curve_strain[i]
+                              << "," << o.curve_stress_pa[i] * 1e-6 << "\n";
+                    }
+                }
+            }
+            // The lab's mean curve: Popovics (1973) through the lab means,
+            // σ = σp (ε/εp) n / (n − 1 + (ε/εp)^n), n = E / (E − σp/εp).
+            const SandTargets& t = p.targets[s];
+            const double secant = t.peak.mean / t.strain.mean;
+            if (t.modulus.mean > secant) {
+                const double n = t.modulus.mean / (t.modulus.mean - secant);
+                for (int i = 1; i <= 75; ++i) {
+                    const double x = 1.5 * i / 75.0;
+                    c << "\"" << st.label << "\",\"" << p.sands[s] << "\",lab_mean_popovics,," << x * t.strain.mean << ","
+                      << t.peak.mean * x * n / (n - 1.0 + std::pow(x, n)) * 1e-6 << "\n";
+                }
+            }
+        }
+    }
+    return c.str();
+}
+
+std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r) {
+    std::ostringstream b;
+    b << "calibrate: " << to_string(p.mode) << "/" << to_string(p.solver.method) << ", " << r.runs_used << " DEM runs ("
+      << r.runs_from_ledger << " from ledger), " << clock_text(r.wall_seconds);
+    for (const CalibrationStage& st : r.stages) {
+        b << " | " << st.label << ":";
+        const ParameterSpace space(p.parameters, p.base.material);
+        for (std::size_t k = 0; k < space.size() && !st.solution.best.empty(); ++k)
+            b << " " << space.free(k).name << "=" << fmt(st.solution.best[k], 3);
+        for (const TargetRow& row : target_rows(p, st))
+            if (std::isfinite(row.rel_error))
+                b << "; " << row.sand << " " << (row.q == Quantity::modulus ? "E" : row.q == Quantity::peak ? "peak" : "eps")
+                  << " " << pct(row.rel_error);
+    }
+    return b.str();
+}
+
+void write_calibration_outputs(const CalibrationProblem& p, const CalibrationResult& r) {
+    report::write_file_atomically(p.out_dir / "summary.json", summary_json(p, r).dump(2) + "\n");
+    report::write_file_atomically(p.out_dir / "summary.md", summary_markdown(p, r));
+    report::write_file_atomically(p.out_dir / "convergence.csv", convergence_csv(p, r));
+    report::write_file_atomically(p.out_dir / "curves.csv", curves_csv(p, r));
+}
+
+}  // namespace gradem::cal

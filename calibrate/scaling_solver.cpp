@@ -1,0 +1,265 @@
+// The scaling-law path (calibration.md §1) and the solver dispatch.
+//   1. run the start point x0;
+//   2. rescale E* by α and the strengths by β in closed form (objective.hpp) -> x1, predict
+//      its outputs, run it, and compare: the homogeneity holds if E and peak are predicted
+//      within solver.homogeneity_tolerance on every sand (else: bobyqa on everything);
+//   3. BOBYQA over the dimensionless shape parameters only, the scales held at x1's: each trial
+//      θ costs one evaluation, and its objective is the one after the best closed-form rescaling
+//      (no extra runs);
+//   4. confirm: run the best θ with its rescaled E* and strengths; if E or peak still miss their
+//      prediction by more than the tolerance, rescale and run once more.
+#include <cmath>
+#include <nlopt.hpp>
+#include <sstream>
+
+#include "calibrate/solver.hpp"
+
+namespace gradem::cal {
+namespace {
+
+struct ScaleIndices {
+    std::vector<std::size_t> stiffness, strength, shape;
+};
+
+ScaleIndices split(const ParameterSpace& space) {
+    ScaleIndices s;
+    for (std::size_t k = 0; k < space.size(); ++k) {
+        const Role r = space.free(k).role();
+        (r == Role::stiffness_scale ? s.stiffness : r == Role::strength_scale ? s.strength : s.shape).push_back(k);
+    }
+    return s;
+}
+
+/// x with the stiffness parameters × α and strength parameters × β, clamped to their bounds;
+/// `applied` receives the α, β that survived the clamping (of the first parameter of each kind).
+std::vector<double> apply_scales(const ParameterSpace& space, const ScaleIndices& idx, std::vector<double> x, Scales sc,
+                                 Scales* applied) {
+    Scales got;
+    for (std::size_t k : idx.stiffness) {
+        const double v = space.clamp(k, x[k] * sc.alpha);
+        if (k == idx.stiffness.front()) got.alpha = v / x[k];
+        x[k] = v;
+    }
+    for (std::size_t k : idx.strength) {
+        const double v = space.clamp(k, x[k] * sc.beta);
+        if (k == idx.strength.front()) got.beta = v / x[k];
+        x[k] = v;
+    }
+    if (applied) *applied = got;
+    return x;
+}
+
+double max_deviation(const Evaluation& predicted, const Evaluation& actual, Quantity q) {
+    double worst = 0.0;
+    for (std::size_t s = 0; s < actual.sands.size(); ++s)
+        worst = std::max(worst, std::fabs(predicted.sands[s].value(q) / actual.sands[s].value(q) - 1.0));
+    return worst;
+}
+
+/// The closed-form rescaling of an evaluation, and the objective it predicts.
+struct Rescaling {
+    Scales scales;              ///< applied (after clamping)
+    std::vector<double> point;  ///< rescaled parameters
+    double predicted = 0.0;     ///< predicted objective
+    Evaluation prediction;
+};
+
+Rescaling rescale(SolveContext& ctx, const ScaleIndices& idx, const Evaluation& e) {
+    Rescaling r;
+    const Scales want = best_scales(e, ctx.problem, !idx.stiffness.empty(), !idx.strength.empty());
+    r.point = apply_scales(ctx.space, idx, e.values, want, &r.scales);
+    r.prediction = rescaled(e, r.scales.alpha, r.scales.beta);
+    r.predicted = objective(r.prediction, ctx.problem);
+    return r;
+}
+
+std::string percent(double x) {
+    std::ostringstream o;
+    o.precision(2);
+    o << std::fixed << 100.0 * x << " %";
+    return o.str();
+}
+
+SolveResult fall_back(SolveContext& ctx, const std::vector<double>& from, BestTracker& tracker, SolveResult head,
+                      const std::string& why) {
+    if (ctx.log) ctx.log("scaling path: " + why + "; falling back to bobyqa on every free parameter");
+    SolveResult r = solve_nlopt(ctx, Method::bobyqa, from, tracker);
+    r.method = "scaling -> bobyqa";
+    r.homogeneity = head.homogeneity;
+    r.notes = head.notes;
+    r.notes.push_back(why + "; fell back to BOBYQA on every free parameter");
+    return r;
+}
+
+}  // namespace
+
+double BestTracker::offer(const Evaluation& e) {
+    const double j = cal::objective(e, problem_);
+    if (!has_ || j < objective_) {
+        best_ = e;
+        objective_ = j;
+        has_ = true;
+    }
+    return j;
+}
+
+double unit_fd_step(const ParameterSpace& space, std::size_t k, double u, double fd_step) {
+    const ParameterSpec& p = space.free(k);
+    const double h = p.log_scale ? std::log1p(fd_step) / std::log(p.upper / p.lower) : fd_step;
+    return u + h <= 1.0 ? h : -h;
+}
+
+double noise_floor_objective(const Evaluation& e, const CalibrationProblem& problem) {
+    double j = 0.0;
+    for (const SandOutcome& s : e.sands)
+        for (Quantity q : kQuantities) {
+            const int k = static_cast<int>(q);
+            if (s.ok < 2 || !std::isfinite(s.std[k])) continue;
+            const double se = s.std[k] / s.mean[k] / std::sqrt(static_cast<double>(s.ok));
+            j += std::pow(problem.weights.of(q) * se, 2);
+        }
+    return j;
+}
+
+SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
+    const ScaleIndices idx = split(ctx.space);
+    BestTracker tracker(ctx.problem);
+    SolveResult head;
+    head.method = "scaling";
+    if (idx.stiffness.empty() && idx.strength.empty()) return fall_back(ctx, start, tracker, head, "no free scale parameter");
+    const int per_eval = static_cast<int>(ctx.sands.size() * ctx.problem.seeds.size());
+    auto log = [&](const std::string& s) { if (ctx.log) ctx.log(s); };
+    try {
+        // 1. The start point.
+        const Evaluation e0 = ctx.evaluator.evaluate(start, ctx.sands, "start");
+        tracker.offer(e0);
+        if (e0.failed) return fall_back(ctx, start, tracker, head, "the start point failed (" + e0.failure + ")");
+        // 2. Closed-form rescaling, and the homogeneity check on the actual specimens.
+        const Rescaling r1 = rescale(ctx, idx, e0);
+        const Evaluation e1 = ctx.evaluator.evaluate(r1.point, ctx.sands, "rescaled");
+        tracker.offer(e1);
+        ctx.evaluator.note_best(tracker.objective());
+        HomogeneityCheck& h = head.homogeneity;
+        h.done = true;
+        h.alpha = r1.scales.alpha;
+        h.beta = r1.scales.beta;
+        if (!e1.failed) {
+            h.modulus_deviation = max_deviation(r1.prediction, e1, Quantity::modulus);
+            h.peak_deviation = max_deviation(r1.prediction, e1, Quantity::peak);
+            h.strain_deviation = max_deviation(r1.prediction, e1, Quantity::strain);
+            h.holds = h.modulus_deviation <= ctx.problem.solver.homogeneity_tolerance &&
+                      h.peak_deviation <= ctx.problem.solver.homogeneity_tolerance;
+        }
+        log("homogeneity check (moduli x " + std::to_string(h.alpha) + ", strengths x " + std::to_string(h.beta) +
+            "): predicted vs run E " + percent(h.modulus_deviation) + ", peak " + percent(h.peak_deviation) + ", strain " +
+            percent(h.strain_deviation) + (h.holds ? " - holds" : " - does not hold"));
+        if (!h.holds)
+            return fall_back(ctx, tracker.best().values, tracker, head,
+                             e1.failed ? "the rescaled point failed (" + e1.failure + ")"
+                                       : "homogeneity does not hold within " + percent(ctx.problem.solver.homogeneity_tolerance));
+        const double noise = noise_floor_objective(e1, ctx.problem);
+        // 3. Shape search at x1's scales, each trial judged after its closed-form rescaling.
+        std::vector<double> best_point = rescale(ctx, idx, e1).point;
+        double best_predicted = rescale(ctx, idx, e1).predicted;
+        std::string stop = "no shape parameter is free";
+        if (!idx.shape.empty()) {
+            const int reserve = per_eval * (2 + static_cast<int>(idx.shape.size()));  // confirmation(s) + uncertainty
+            const int evals = (ctx.evaluator.runs_remaining() - reserve) / per_eval;
+            if (evals < static_cast<int>(idx.shape.size()) + 2) {
+                stop = "shape search skipped: too few runs left in the budget";
+                head.notes.push_back(stop);
+            } else {
+                const std::size_t n = idx.shape.size();
+                nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
+                opt.set_lower_bounds(std::vector<double>(n, 0.0));
+                opt.set_upper_bounds(std::vector<double>(n, 1.0));
+                opt.set_initial_step(std::vector<double>(n, 0.2));
+                opt.set_xtol_abs(ctx.problem.solver.tolerance);
+                opt.set_ftol_abs(std::max(noise, 1e-12));
+                opt.set_maxeval(evals);
+                const std::vector<double> u1 = ctx.space.to_unit(e1.values);
+                std::vector<double> theta;
+                for (std::size_t k : idx.shape) theta.push_back(u1[k]);
+                struct Data {
+                    SolveContext* ctx;
+                    const ScaleIndices* idx;
+                    const std::vector<double>* u1;
+                    BestTracker* tracker;
+                    std::vector<double>* best_point;
+                    double* best_predicted;
+                    int reserve;
+                    nlopt::opt* opt;
+                } data{&ctx, &idx, &u1, &tracker, &best_point, &best_predicted, reserve, &opt};
+                opt.set_min_objective(
+                    [](unsigned, const double* th, double*, void* d) -> double {
+                        auto& D = *static_cast<Data*>(d);
+                        std::vector<double> u = *D.u1;
+                        for (std::size_t j = 0; j < D.idx->shape.size(); ++j) u[D.idx->shape[j]] = th[j];
+                        const std::vector<double> values = D.ctx->space.from_unit(u);
+                        if (D.ctx->evaluator.runs_needed({values}, D.ctx->sands) > D.ctx->evaluator.runs_remaining() - D.reserve) {
+                            D.opt->force_stop();  // keep the confirmation's share of the budget
+                            return HUGE_VAL;
+                        }
+                        const Evaluation e = D.ctx->evaluator.evaluate(values, D.ctx->sands, "shape");
+                        D.tracker->offer(e);
+                        if (e.failed) return objective(e, D.ctx->problem);
+                        const Rescaling r = rescale(*D.ctx, *D.idx, e);
+                        if (r.predicted < *D.best_predicted) {
+                            *D.best_predicted = r.predicted;
+                            *D.best_point = r.point;
+                        }
+                        D.ctx->evaluator.note_best(*D.best_predicted);
+                        return r.predicted;
+                    },
+                    &data);
+                double f = 0.0;
+                try {
+                    const nlopt::result res = opt.optimize(theta, f);
+                    stop = res == nlopt::MAXEVAL_REACHED ? "shape search used its share of the budget"
+                           : res == nlopt::FTOL_REACHED  ? "shape search: objective change below the noise floor"
+                           : res == nlopt::XTOL_REACHED  ? "shape search: parameter change below solver.tolerance"
+                                                         : "shape search converged";
+                } catch (const nlopt::roundoff_limited&) {
+                    stop = "shape search: round-off limited (flat at the noise level)";
+                } catch (const nlopt::forced_stop&) {
+                    stop = "shape search used its share of the budget";
+                }
+            }
+        }
+        log(stop + "; best predicted objective " + std::to_string(best_predicted));
+        // 4. Confirmation runs.
+        std::vector<double> point = best_point;
+        for (int round = 0; round < 2; ++round) {
+            const Evaluation e = ctx.evaluator.evaluate(point, ctx.sands, "confirm");
+            tracker.offer(e);
+            ctx.evaluator.note_best(tracker.objective());
+            if (e.failed) break;
+            const Rescaling r = rescale(ctx, idx, e);
+            const bool on_target = std::fabs(r.scales.alpha - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2 &&
+                                   std::fabs(r.scales.beta - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2;
+            if (on_target) break;
+            point = r.point;
+        }
+        head.stop_reason = stop;
+    } catch (const BudgetExhausted& e) {
+        head.budget_exhausted = true;
+        head.stop_reason = std::string("stopped: ") + e.what();
+    }
+    head.best = tracker.best().values;
+    head.best_eval = tracker.best();
+    head.best_objective = tracker.objective();
+    return head;
+}
+
+SolveResult solve(SolveContext& ctx, const std::vector<double>& start) {
+    switch (ctx.problem.solver.method) {
+        case Method::scaling: return solve_scaling(ctx, start);
+        case Method::ceres: return solve_ceres(ctx, start);
+        default: {
+            BestTracker tracker(ctx.problem);
+            return solve_nlopt(ctx, ctx.problem.solver.method, start, tracker);
+        }
+    }
+}
+
+}  // namespace gradem::cal

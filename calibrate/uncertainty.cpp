@@ -1,0 +1,177 @@
+#include "calibrate/uncertainty.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <sstream>
+
+namespace gradem::cal {
+namespace {
+
+/// r(z) = r0 + J (z − z0): the residuals linearised at the optimum, for Ceres' Covariance.
+class Linearised final : public ceres::CostFunction {
+public:
+    Linearised(Eigen::VectorXd r0, Eigen::MatrixXd jac, Eigen::VectorXd z0)
+        : r0_(std::move(r0)), jac_(std::move(jac)), z0_(std::move(z0)) {
+        set_num_residuals(static_cast<int>(r0_.size()));
+        mutable_parameter_block_sizes()->push_back(static_cast<int>(z0_.size()));
+    }
+    bool Evaluate(double const* const* p, double* r, double** jacobians) const override {
+        const Eigen::Map<const Eigen::VectorXd> z(p[0], z0_.size());
+        Eigen::Map<Eigen::VectorXd>(r, r0_.size()) = r0_ + jac_ * (z - z0_);
+        if (jacobians && jacobians[0])
+            Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobians[0], jac_.rows(), jac_.cols()) = jac_;
+        return true;
+    }
+
+private:
+    Eigen::VectorXd r0_;
+    Eigen::MatrixXd jac_;
+    Eigen::VectorXd z0_;
+};
+
+/// Lab-normalised outputs of an evaluation: rows (sand, quantity) with weight > 0.
+struct Rows {
+    std::vector<std::size_t> sand;
+    std::vector<Quantity> quantity;
+    std::vector<double> scale;  ///< s_i
+};
+
+Rows rows_of(const Evaluation& e, const CalibrationProblem& p) {
+    Rows r;
+    for (const SandOutcome& s : e.sands)
+        for (Quantity q : kQuantities) {
+            if (p.weights.of(q) <= 0.0) continue;
+            const TargetStat& lab = target_of(p.targets[s.sand], q);
+            const int k = static_cast<int>(q);
+            const double sim_var = s.ok > 1 && std::isfinite(s.std[k]) ? s.std[k] * s.std[k] / s.ok : 0.0;
+            double var = (std::isfinite(lab.std) ? lab.std * lab.std : 0.0) + sim_var;
+            if (!(var > 0.0)) var = std::pow(0.05 * lab.mean, 2);  // no scatter known: assume 5 %
+            r.sand.push_back(s.sand);
+            r.quantity.push_back(q);
+            r.scale.push_back(std::sqrt(var));
+        }
+    return r;
+}
+
+double output(const Evaluation& e, std::size_t sand, Quantity q) {
+    for (const SandOutcome& s : e.sands)
+        if (s.sand == sand) return s.value(q);
+    return std::nan("");
+}
+
+}  // namespace
+
+Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
+    Uncertainty u;
+    const ParameterSpace& space = ctx.space;
+    const std::size_t n = space.size();
+    if (sol.best_eval.failed || sol.best.empty()) {
+        u.note = "not computed: the best point has no successful runs";
+        return u;
+    }
+    const bool closed_form = sol.homogeneity.holds;
+    // 1. Difference points for every column that is not closed-form.
+    const std::vector<double> u0 = space.to_unit(sol.best);
+    std::vector<std::size_t> fd_columns;
+    std::vector<std::vector<double>> points;
+    std::vector<double> steps;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (closed_form && space.free(k).role() != Role::shape) continue;
+        std::vector<double> uk = u0;
+        steps.push_back(unit_fd_step(space, k, u0[k], ctx.problem.solver.fd_step));
+        uk[k] += steps.back();
+        fd_columns.push_back(k);
+        points.push_back(space.from_unit(uk));
+    }
+    std::vector<Evaluation> fd;
+    if (!points.empty()) {
+        const int before = ctx.evaluator.runs_used();
+        try {
+            fd = ctx.evaluator.evaluate(points, ctx.sands, "uncertainty");
+        } catch (const BudgetExhausted& e) {
+            u.note = std::string("not computed: ") + e.what() + " (raise solver.max_runs for standard errors)";
+            return u;
+        }
+        u.fd_runs = ctx.evaluator.runs_used() - before;
+        for (const Evaluation& e : fd)
+            if (e.failed) {
+                u.note = "not computed: a difference point failed (" + e.failure + ")";
+                return u;
+            }
+    }
+    // 2. The Jacobian of the lab-normalised residuals in natural coordinates.
+    const Rows rows = rows_of(sol.best_eval, ctx.problem);
+    const std::size_t m = rows.sand.size();
+    Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
+    Eigen::VectorXd r0(static_cast<Eigen::Index>(m)), z0(static_cast<Eigen::Index>(n)), unit_scale(static_cast<Eigen::Index>(n));
+    for (std::size_t k = 0; k < n; ++k) {
+        const ParameterSpec& p = space.free(k);
+        z0[k] = space.to_natural(k, sol.best[k]);
+        unit_scale[k] = p.log_scale ? std::log(p.upper / p.lower) : p.upper - p.lower;  // dz/du
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+        const double y = output(sol.best_eval, rows.sand[i], rows.quantity[i]);
+        r0[i] = (y - target_of(ctx.problem.targets[rows.sand[i]], rows.quantity[i]).mean) / rows.scale[i];
+        for (std::size_t k = 0; k < n; ++k) {
+            const Role role = space.free(k).role();
+            double dy_dz = 0.0;
+            if (closed_form && role != Role::shape) {
+                // ∂y/∂ln(scale) from the homogeneity; divide by v for a linear-scaled parameter.
+                const Quantity q = rows.quantity[i];
+                const double dlny = role == Role::stiffness_scale ? (q == Quantity::modulus ? 1.0 : q == Quantity::strain ? -1.0 : 0.0)
+                                                                  : (q == Quantity::modulus ? 0.0 : 1.0);
+                dy_dz = dlny * y / (space.free(k).log_scale ? 1.0 : sol.best[k]);
+            } else {
+                const auto col = static_cast<std::size_t>(std::find(fd_columns.begin(), fd_columns.end(), k) - fd_columns.begin());
+                const double yk = output(fd[col], rows.sand[i], rows.quantity[i]);
+                dy_dz = (yk - y) / (steps[col] * unit_scale[k]);
+            }
+            jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = dy_dz / rows.scale[i];
+        }
+    }
+    // 3. Singular values (unit-box columns) and the covariance.
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac * unit_scale.asDiagonal(), Eigen::ComputeThinV);
+    for (Eigen::Index k = 0; k < svd.singularValues().size(); ++k) u.singular_values.push_back(svd.singularValues()[k]);
+    const double smax = u.singular_values.empty() ? 0.0 : u.singular_values.front();
+    const double smin = u.singular_values.size() < n ? 0.0 : u.singular_values.back();
+    u.condition = smin > 0.0 ? smax / smin : HUGE_VAL;
+
+    ceres::Problem problem;
+    std::vector<double> z(z0.data(), z0.data() + n);
+    problem.AddResidualBlock(new Linearised(r0, jac, z0), nullptr, z.data());
+    ceres::Covariance::Options options;
+    options.algorithm_type = ceres::DENSE_SVD;
+    options.null_space_rank = -1;  // drop directions the data do not see instead of failing
+    options.min_reciprocal_condition_number = 1e-10;
+    ceres::Covariance covariance(options);
+    std::vector<double> cov(n * n, std::nan(""));
+    const std::vector<std::pair<const double*, const double*>> blocks = {{z.data(), z.data()}};
+    if (covariance.Compute(blocks, &problem)) covariance.GetCovarianceBlock(z.data(), z.data(), cov.data());
+    else u.note = "Ceres could not compute the covariance";
+    // 4. Standard errors, intervals, and the parameters the data cannot pin down.
+    const Eigen::MatrixXd v = svd.matrixV();
+    for (std::size_t k = 0; k < n; ++k) {
+        const ParameterSpec& p = space.free(k);
+        const double se = std::sqrt(std::max(0.0, cov[k * n + k]));
+        u.std_error_natural.push_back(se);
+        u.low.push_back(space.from_natural(k, z0[k] - se));
+        u.high.push_back(space.from_natural(k, z0[k] + se));
+        const double se_unit = se / unit_scale[k];
+        std::ostringstream why;
+        if (smax > 0.0 && !u.singular_values.empty()) {
+            const auto last = static_cast<Eigen::Index>(u.singular_values.size() - 1);
+            if (u.singular_values.back() < 1e-3 * smax && std::fabs(v(static_cast<Eigen::Index>(k), last)) > 0.5)
+                why << "lies in the direction the targets do not see (singular value "
+                    << u.singular_values.back() / smax << " of the largest)";
+        }
+        if (why.str().empty() && se_unit > 0.25)
+            why << "one standard error spans " << static_cast<int>(std::round(100 * se_unit)) << " % of its bounds";
+        if (!why.str().empty()) u.poorly_identified.push_back(p.name + ": " + why.str());
+    }
+    u.computed = true;
+    return u;
+}
+
+}  // namespace gradem::cal

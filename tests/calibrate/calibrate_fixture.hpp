@@ -1,0 +1,60 @@
+#pragma once
+// Helpers of the calibration tests: a problem folder with a lab_results.json made from known
+// parameters (a twin experiment) and a calibration TOML pointing at it.
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calibrate/calibration.hpp"
+#include "calibrate/cube_model.hpp"
+#include "calibrate/parameters.hpp"
+#include "../temp_dir.hpp"
+
+namespace gradem::test {
+
+inline std::filesystem::path calibration_base_config() {
+    return std::filesystem::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "calibration_cube.toml";
+}
+
+/// Lab targets = the model's seed means at `material` over `seeds` (with their spread as std).
+inline nlohmann::json synthetic_lab_results(const cal::CubeModel& model, const std::vector<std::string>& sands,
+                                            const exp::MaterialParams& material, const std::vector<std::uint64_t>& seeds) {
+    nlohmann::json out = {{"schema", "gradem-lab-results/1"}, {"representative_data", true},
+                          {"note", "synthetic twin-experiment targets"}, {"sands", nlohmann::json::array()}};
+    for (std::size_t s = 0; s < sands.size(); ++s) {
+        double sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
+        for (std::uint64_t seed : seeds) {
+            const cal::RunOutcome o = model.run({s, seed, material}, 0.0);
+            const double v[3] = {o.modulus_pa * 1e-6, o.peak_pa * 1e-6, o.strain_at_peak};
+            for (int k = 0; k < 3; ++k) sum[k] += v[k], sq[k] += v[k] * v[k];
+        }
+        const double n = static_cast<double>(seeds.size());
+        auto stat = [&](int k) {
+            const double mean = sum[k] / n;
+            const double var = n > 1 ? std::max(0.0, (sq[k] - n * mean * mean) / (n - 1)) : 0.0;
+            return nlohmann::json{{"n", seeds.size()}, {"mean", mean}, {"std", std::sqrt(var) + 0.03 * mean}};
+        };
+        out["sands"].push_back({{"name", sands[s]}, {"chord_modulus_mpa", stat(0)}, {"peak_stress_mpa", stat(1)}, {"strain_at_peak", stat(2)}});
+    }
+    return out;
+}
+
+inline void write_text(const std::filesystem::path& p, const std::string& text) {
+    std::ofstream(p) << text;
+}
+
+/// A calibration TOML in `dir` with the given extra tables/keys (appended after [calibration]).
+inline std::filesystem::path write_problem(const std::filesystem::path& dir, const std::string& calibration_keys,
+                                           const std::string& rest, const std::string& name = "problem.toml") {
+    const std::string text = "[calibration]\nbase = \"" + calibration_base_config().string() + "\"\n" + calibration_keys +
+                             "\n[targets]\nlab_results = \"lab_results.json\"\n" + rest + "\n";
+    write_text(dir / name, text);
+    return dir / name;
+}
+
+}  // namespace gradem::test

@@ -1,0 +1,259 @@
+// Calibration logic on the analytic stand-in: twin experiments (known parameters recovered),
+// the homogeneity rescaling, resume after kill -9, and failures as values.
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <thread>
+
+#include "calibrate/ledger.hpp"
+#include "calibrate/objective.hpp"
+#include "calibrate/problem.hpp"
+#include "calibrate/report.hpp"
+#include "calibrate_fixture.hpp"
+#include "experiments/cube_config.hpp"
+
+namespace fs = std::filesystem;
+using namespace gradem;
+using gradem::test::TempDir;
+
+namespace {
+
+const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
+const std::vector<double> kTruth = {20.0, 12.0, 1.6, 0.25};  // E* GPa, σ̄c MPa, c̄/σ̄c, cv (canonical order)
+
+/// The base material with the four default free parameters set to `values`.
+exp::MaterialParams material_at(const std::vector<double>& values) {
+    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
+    std::vector<cal::ParameterSpec> specs;
+    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
+        specs.push_back(cal::default_parameter(name, base));
+        specs.back().free = true;
+    }
+    return cal::ParameterSpace(specs, base).material(values);
+}
+
+/// A twin problem: targets from the analytic model at kTruth over seeds 101-110.
+fs::path twin_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& method, int max_runs,
+                      const std::string& extra = "") {
+    std::vector<std::uint64_t> seeds;
+    for (std::uint64_t s = 101; s <= 110; ++s) seeds.push_back(s);
+    test::write_text(dir / "lab_results.json", test::synthetic_lab_results(model, kSands, material_at(kTruth), seeds).dump(1));
+    return test::write_problem(dir, "seeds = [1, 2, 3]\n",
+                               "[solver]\nmethod = \"" + method + "\"\nmax_runs = " + std::to_string(max_runs) +
+                                   "\ntolerance = 0.002\n" + extra + "[output]\ndir = \"out\"\n");
+}
+
+std::vector<double> best_of(const cal::CalibrationResult& r) { return r.stages.at(0).solution.best; }
+
+void check_recovered(const std::vector<double>& got, double tolerance) {
+    REQUIRE(got.size() == kTruth.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        INFO("parameter " << k << ": " << got[k] << " vs truth " << kTruth[k]);
+        CHECK(std::fabs(got[k] / kTruth[k] - 1.0) < tolerance);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("closed-form rescaling recovers the exact moduli and strength factors", "[calibrate]") {
+    cal::CalibrationProblem p;
+    p.targets = {{"a", {10e9, 1e9, 3}, {20e6, 1e6, 3}, {0.003, 1e-4, 3}}, {"b", {8e9, 1e9, 3}, {16e6, 1e6, 3}, {0.003, 1e-4, 3}}};
+    p.weights = {1.0, 1.0, 0.5};
+    // Outputs that are the targets with moduli / 1.7 and strengths / 0.8: α = 1.7, β = 0.8 fit exactly.
+    cal::Evaluation e;
+    for (std::size_t s = 0; s < 2; ++s) {
+        cal::SandOutcome o;
+        o.sand = s;
+        o.ok = 2;
+        o.mean[0] = p.targets[s].modulus.mean / 1.7;
+        o.mean[1] = p.targets[s].peak.mean / 0.8;
+        o.mean[2] = p.targets[s].strain.mean * 1.7 / 0.8;
+        e.sands.push_back(o);
+    }
+    const cal::Scales sc = cal::best_scales(e, p, true, true);
+    CHECK(sc.alpha == Approx(1.7).epsilon(1e-12));
+    CHECK(sc.beta == Approx(0.8).epsilon(1e-12));
+    CHECK(cal::objective(cal::rescaled(e, sc.alpha, sc.beta), p) < 1e-24);
+    // Only the strengths free: β from peak and strain rows, α stays 1.
+    const cal::Scales only_strength = cal::best_scales(e, p, false, true);
+    CHECK(only_strength.alpha == 1.0);
+    CHECK(only_strength.beta < 1.0);
+}
+
+TEST_CASE("twin experiment, analytic stand-in: the scaling path recovers known parameters to 1 %", "[calibrate]") {
+    TempDir dir("cal-twin-scaling");
+    auto model = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "scaling", 400));
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    const cal::CalibrationStage& st = r.stages.at(0);
+    CHECK(st.solution.homogeneity.holds);
+    CHECK(st.solution.homogeneity.modulus_deviation < 1e-9);  // exactly homogeneous stand-in
+    check_recovered(best_of(r), 0.01);
+    CHECK(r.runs_used <= 400);
+    REQUIRE(st.uncertainty.computed);
+    CHECK(st.uncertainty.singular_values.size() == 4);
+    for (const auto& row : cal::summary_json(problem, r)["targets"]) CHECK(std::fabs(row["rel_error"].get<double>()) < 0.01);
+}
+
+TEST_CASE("twin experiment, analytic stand-in: Ceres LM recovers every parameter, BOBYQA closes in", "[calibrate]") {
+    SECTION("ceres") {
+        TempDir dir("cal-twin-ceres");
+        auto model = cal::make_analytic_model(2, 0.001);
+        const cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "ceres", 900));
+        const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+        INFO("stop: " << r.stages[0].solution.stop_reason << ", runs " << r.runs_used);
+        check_recovered(best_of(r), 0.01);
+        CHECK(r.stages[0].solution.best_objective < 1e-5);
+    }
+    SECTION("bobyqa on all four parameters: the valley of the strength-stiffness trade-off is slow without the scaling laws") {
+        TempDir dir("cal-twin-bobyqa");
+        auto model = cal::make_analytic_model(2, 0.001);
+        const cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "bobyqa", 900));
+        const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+        const double start = cal::objective(r.history.front(), problem);
+        INFO("stop: " << r.stages[0].solution.stop_reason << ", runs " << r.runs_used << ", objective " << start << " -> "
+                      << r.stages[0].solution.best_objective);
+        CHECK(r.stages[0].solution.best_objective < 0.02 * start);
+        for (const auto& row : cal::summary_json(problem, r)["targets"])
+            if (row["quantity"] != "strain_at_peak") CHECK(std::fabs(row["rel_error"].get<double>()) < 0.05);
+    }
+}
+
+TEST_CASE("a repeated request is served from the ledger, not run again", "[calibrate]") {
+    TempDir dir("cal-ledger-serve");
+    auto model = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "scaling", 60));
+    const cal::CalibrationResult first = cal::run_calibration(problem, *model);
+    REQUIRE(first.runs_executed > 0);
+    const cal::CalibrationResult again = cal::run_calibration(problem, *model);
+    CHECK(again.runs_executed == 0);
+    CHECK(again.runs_from_ledger == first.runs_used);
+    CHECK(best_of(again) == best_of(first));  // bitwise: the ledger stores exact doubles
+}
+
+namespace {
+
+/// The stand-in, slowed down so a calibration can be killed in the middle.
+class SlowModel final : public cal::CubeModel {
+public:
+    explicit SlowModel(std::unique_ptr<cal::CubeModel> inner) : inner_(std::move(inner)) {}
+    void prepare(const std::vector<std::uint64_t>& s, int w, const std::function<void(const std::string&)>& l) override { inner_->prepare(s, w, l); }
+    cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
+        std::this_thread::sleep_for(std::chrono::milliseconds(40));
+        return inner_->run(q, t);
+    }
+    std::string fingerprint() const override { return inner_->fingerprint(); }
+    std::size_t sand_count() const override { return inner_->sand_count(); }
+
+private:
+    std::unique_ptr<cal::CubeModel> inner_;
+};
+
+std::int64_t ledger_rows(const fs::path& path) {
+    sqlite3* db = nullptr;
+    std::int64_t n = -1;
+    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+        sqlite3_stmt* s = nullptr;
+        if (sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM runs", -1, &s, nullptr) == SQLITE_OK && sqlite3_step(s) == SQLITE_ROW)
+            n = sqlite3_column_int64(s, 0);
+        sqlite3_finalize(s);
+    }
+    sqlite3_close(db);
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("kill -9 in the middle: the resumed calibration repeats no run and reaches the same answer", "[calibrate]") {
+    TempDir dir("cal-resume");
+    auto model = cal::make_analytic_model(2, 0.001);
+    cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "scaling", 60));
+    // The uninterrupted reference, in its own ledger.
+    cal::CalibrationProblem reference = problem;
+    reference.ledger = dir.path / "reference.sqlite";
+    const cal::CalibrationResult uninterrupted = cal::run_calibration(reference, *model);
+
+    // A child process calibrates slowly; it is killed with SIGKILL once the ledger holds runs.
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        SlowModel slow(cal::make_analytic_model(2, 0.001));
+        try {
+            cal::run_calibration(problem, slow);
+        } catch (...) {
+        }
+        _exit(0);
+    }
+    std::int64_t rows = 0;
+    for (int k = 0; k < 4000 && rows < 10; ++k) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        if (fs::exists(problem.ledger)) rows = std::max<std::int64_t>(rows, ledger_rows(problem.ledger));
+    }
+    kill(child, SIGKILL);
+    int status = 0;
+    waitpid(child, &status, 0);
+    REQUIRE(WIFSIGNALED(status));
+    const std::int64_t recorded = ledger_rows(problem.ledger);
+    REQUIRE(recorded >= 10);
+    REQUIRE(recorded < uninterrupted.runs_used);
+
+    const cal::CalibrationResult resumed = cal::run_calibration(problem, *model);
+    CHECK(resumed.runs_from_ledger == recorded);
+    CHECK(resumed.runs_executed == uninterrupted.runs_used - recorded);
+    CHECK(resumed.runs_used == uninterrupted.runs_used);
+    CHECK(best_of(resumed) == best_of(uninterrupted));
+}
+
+TEST_CASE("a diverging evaluation is a penalty value: the calibration goes on", "[calibrate]") {
+    TempDir dir("cal-diverge");
+    // Every run with E* above 21 GPa diverges; BOBYQA's first step in E* (0.15 of the unit box
+    // from 11 GPa) goes to 22 GPa. The truth, 20 GPa, is below the limit.
+    auto model = cal::make_analytic_model(2, 0.001, 21.0);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "bobyqa", 600));
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    CHECK(r.runs_failed > 0);
+    bool saw_failed_evaluation = false;
+    for (const auto& e : r.history) saw_failed_evaluation = saw_failed_evaluation || (e.failed && e.failure.find("diverged") != std::string::npos);
+    CHECK(saw_failed_evaluation);
+    CHECK_FALSE(r.stages[0].solution.best_eval.failed);
+    CHECK(r.stages[0].solution.best_objective < 0.05 * cal::objective(r.history.front(), problem));
+    // The failures are in the ledger with their reason.
+    sqlite3* db = nullptr;
+    REQUIRE(sqlite3_open_v2(problem.ledger.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK);
+    sqlite3_stmt* s = nullptr;
+    REQUIRE(sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM runs WHERE status = 'diverged' AND reason LIKE 'diverged:%'", -1, &s, nullptr) == SQLITE_OK);
+    REQUIRE(sqlite3_step(s) == SQLITE_ROW);
+    CHECK(sqlite3_column_int64(s, 0) == r.runs_failed);
+    sqlite3_finalize(s);
+    sqlite3_close(db);
+}
+
+TEST_CASE("study protocol: calibrate on one sand, predict the other", "[calibrate]") {
+    TempDir dir("cal-study");
+    auto model = cal::make_analytic_model(2, 0.001);
+    std::vector<std::uint64_t> seeds = {101, 102, 103};
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, kSands, material_at(kTruth), seeds).dump(1));
+    const fs::path cfg = test::write_problem(dir.path, "mode = \"study\"\ncalibrate_on = \"pre-blended\"\nseeds = [1, 2]\n",
+                                             "[parameters.cohesion_ratio]\nfree = false\nstart = 1.6\n"
+                                             "[parameters.strength_cv]\nfree = false\nstart = 0.25\n"
+                                             "[solver]\nmax_runs = 40\n[output]\ndir = \"out\"\n");
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(cfg);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    const cal::CalibrationStage& st = r.stages.at(0);
+    REQUIRE(st.predicted == std::vector<std::size_t>{1});
+    REQUIRE(st.outcome(1) != nullptr);
+    // With the true shape parameters fixed, the prediction of the other sand is right too.
+    const nlohmann::json j = cal::summary_json(problem, r);
+    int predicted_rows = 0;
+    for (const auto& row : j["targets"])
+        if (row["role"] == "predicted") {
+            ++predicted_rows;
+            CHECK(std::fabs(row["rel_error"].get<double>()) < 0.01);
+        }
+    CHECK(predicted_rows == 3);
+}

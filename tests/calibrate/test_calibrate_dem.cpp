@@ -1,0 +1,53 @@
+// The DEM twin experiment (tagged slow): synthetic lab targets made by gradem's own cube test
+// at known parameters on other packing seeds; the scaling path must recover them.
+#include <catch2/catch.hpp>
+
+#include "calibrate/report.hpp"
+#include "calibrate_fixture.hpp"
+
+namespace fs = std::filesystem;
+using namespace gradem;
+using gradem::test::TempDir;
+
+TEST_CASE("twin experiment, real DEM: modulus and peak within 3 %, parameters within 10 %", "[calibrate][.slow]") {
+    TempDir dir("cal-dem-twin");
+    // The calibration specimen with its paths made absolute and the packing cache in the temp dir.
+    std::ifstream in(test::calibration_base_config());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string base = text.str();
+    const std::string study = (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string();
+    base.replace(base.find("\"../../lab_data/datasets/study\""), std::string("\"../../lab_data/datasets/study\"").size(), "\"" + study + "\"");
+    base.replace(base.find("\"../../out/packing-cache\""), std::string("\"../../out/packing-cache\"").size(), "\"cache\"");
+    test::write_text(dir.path / "base.toml", base);
+    const exp::CubeConfig cube = exp::load_cube_config(dir.path / "base.toml");
+
+    auto model = cal::make_dem_model(cube, {"Van Buren"});
+    model->prepare({1, 2, 11, 12}, 2, {});
+    exp::MaterialParams truth = cube.material;  // E* = 11 GPa, σ̄c = 9 MPa in the base: truth elsewhere
+    truth.contact.effective_modulus = truth.bond.effective_modulus = 16e9;
+    const double strength = 12e6 / truth.bond.tensile_strength_mean;
+    truth.bond.tensile_strength_mean *= strength, truth.bond.tensile_strength_std *= strength;
+    truth.bond.cohesion_mean *= strength, truth.bond.cohesion_std *= strength;
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, {"Van Buren"}, truth, {11, 12}).dump(1));
+
+    std::string cfg = "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1, 2]\n"
+                      "[targets]\nlab_results = \"lab_results.json\"\n"
+                      "[parameters.cohesion_ratio]\nfree = false\n[parameters.strength_cv]\nfree = false\n"
+                      "[solver]\nmax_runs = 16\n[output]\ndir = \"out\"\n";
+    test::write_text(dir.path / "problem.toml", cfg);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(dir.path / "problem.toml");
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    const cal::CalibrationStage& st = r.stages.at(0);
+    CHECK(st.solution.homogeneity.holds);
+    const std::vector<double> got = st.solution.best;  // E* GPa, σ̄c MPa
+    INFO("recovered E* " << got.at(0) << " GPa, tensile strength " << got.at(1) << " MPa");
+    CHECK(std::fabs(got[0] / 16.0 - 1.0) < 0.10);
+    CHECK(std::fabs(got[1] / 12.0 - 1.0) < 0.10);
+    for (const auto& row : cal::summary_json(problem, r)["targets"])
+        if (row["quantity"] != "strain_at_peak") {
+            INFO(row.dump());
+            CHECK(std::fabs(row["rel_error"].get<double>()) < 0.03);
+        }
+    CHECK(r.runs_used <= 16);
+}
