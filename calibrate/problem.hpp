@@ -45,7 +45,7 @@ const char* to_string(Quantity q);
 const TargetStat& target_of(const SandTargets& t, Quantity q);
 
 struct Weights {
-    double modulus = 1.0, peak = 1.0, strain = 0.5;
+    double modulus = 1.0, peak = 1.0, strain = 0.2;
     [[nodiscard]] double of(Quantity q) const { return q == Quantity::modulus ? modulus : q == Quantity::peak ? peak : strain; }
 };
 

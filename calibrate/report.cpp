@@ -101,7 +101,7 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
         if (!std::isfinite(r.rel_error) || std::fabs(r.rel_error) <= kMetTolerance) continue;
         std::ostringstream s;
         s << r.sand << " " << label(r.q) << " (" << r.role << "): simulated " << fmt(r.sim_mean * display(r.q)) << " vs lab "
-          << fmt(r.lab.mean * display(r.q)) << " " << unit(r.q) << " (" << pct(r.rel_error) << ")";
+          << fmt(r.lab.mean * display(r.q)) << (r.q == Quantity::strain ? "" : " MPa") << " (" << pct(r.rel_error) << ")";
         if (r.q == Quantity::strain) {
             const std::size_t si = static_cast<std::size_t>(std::find(p.sands.begin(), p.sands.end(), r.sand) - p.sands.begin());
             const SandTargets& t = p.targets[si];
@@ -250,7 +250,7 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
         if (u.computed) {
             md << "Identifiability: singular values of the lab-normalised Jacobian (unit-box columns) ";
             for (std::size_t k = 0; k < u.singular_values.size(); ++k) md << (k ? ", " : "") << fmt(u.singular_values[k], 3);
-            md << "; condition number " << fmt(u.condition, 3) << ".";
+            md << "; condition number " << (std::isfinite(u.condition) ? fmt(u.condition, 3) : "infinite (rank-deficient)") << ".";
             if (u.poorly_identified.empty()) md << " Every free parameter is pinned down by the targets.\n\n";
             else {
                 md << " **The data cannot pin down:**\n\n";

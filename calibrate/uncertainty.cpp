@@ -131,12 +131,21 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
             jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = dy_dz / rows.scale[i];
         }
     }
-    // 3. Singular values (unit-box columns) and the covariance.
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac * unit_scale.asDiagonal(), Eigen::ComputeThinV);
+    // 3. Singular values (unit-box columns; zeros for the directions beyond the number of
+    //    targets) and the covariance.
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac * unit_scale.asDiagonal(), Eigen::ComputeFullV);
     for (Eigen::Index k = 0; k < svd.singularValues().size(); ++k) u.singular_values.push_back(svd.singularValues()[k]);
-    const double smax = u.singular_values.empty() ? 0.0 : u.singular_values.front();
-    const double smin = u.singular_values.size() < n ? 0.0 : u.singular_values.back();
+    u.singular_values.resize(n, 0.0);
+    const double smax = u.singular_values.front();
+    const double smin = u.singular_values.back();
     u.condition = smin > 0.0 ? smax / smin : HUGE_VAL;
+    // Each parameter's share of the directions the targets do not see (σ < 1e-3 σmax).
+    const Eigen::MatrixXd v = svd.matrixV();
+    std::vector<double> blind_share(n, 0.0);
+    for (std::size_t j = 0; j < n; ++j)
+        if (!(u.singular_values[j] > 1e-3 * smax))
+            for (std::size_t k = 0; k < n; ++k)
+                blind_share[k] += std::pow(v(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)), 2);
 
     ceres::Problem problem;
     std::vector<double> z(z0.data(), z0.data() + n);
@@ -151,23 +160,19 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
     if (covariance.Compute(blocks, &problem)) covariance.GetCovarianceBlock(z.data(), z.data(), cov.data());
     else u.note = "Ceres could not compute the covariance";
     // 4. Standard errors, intervals, and the parameters the data cannot pin down.
-    const Eigen::MatrixXd v = svd.matrixV();
     for (std::size_t k = 0; k < n; ++k) {
         const ParameterSpec& p = space.free(k);
-        const double se = std::sqrt(std::max(0.0, cov[k * n + k]));
+        const bool blind = std::sqrt(blind_share[k]) > 0.5;
+        const double se = blind ? HUGE_VAL : std::sqrt(std::max(0.0, cov[k * n + k]));
         u.std_error_natural.push_back(se);
         u.low.push_back(space.from_natural(k, z0[k] - se));
         u.high.push_back(space.from_natural(k, z0[k] + se));
-        const double se_unit = se / unit_scale[k];
         std::ostringstream why;
-        if (smax > 0.0 && !u.singular_values.empty()) {
-            const auto last = static_cast<Eigen::Index>(u.singular_values.size() - 1);
-            if (u.singular_values.back() < 1e-3 * smax && std::fabs(v(static_cast<Eigen::Index>(k), last)) > 0.5)
-                why << "lies in the direction the targets do not see (singular value "
-                    << u.singular_values.back() / smax << " of the largest)";
-        }
-        if (why.str().empty() && se_unit > 0.25)
-            why << "one standard error spans " << static_cast<int>(std::round(100 * se_unit)) << " % of its bounds";
+        if (blind)
+            why << "lies in a direction the targets do not see (" << m << " targets for " << n
+                << " free parameters, or collinear columns): its value is set by the start point and the solver's path, not the data";
+        else if (se / unit_scale[k] > 0.25)
+            why << "one standard error spans " << static_cast<int>(std::round(100 * se / unit_scale[k])) << " % of its bounds";
         if (!why.str().empty()) u.poorly_identified.push_back(p.name + ": " + why.str());
     }
     u.computed = true;
