@@ -53,7 +53,8 @@ std::string clock_text(double seconds) {
 /// is an upper bound: the budget's remaining runs at the mean run time, `workers` at a time.
 void print_progress(const cal::Progress& p) {
     const bool tty = isatty(fileno(stderr)) != 0;
-    const double eta = p.mean_run_s * (p.max_runs - p.runs_used) / std::max(1, p.workers);
+    // No run timed yet (all from the ledger): no estimate.
+    const double eta = p.mean_run_s > 0.0 ? p.mean_run_s * (p.max_runs - p.runs_used) / std::max(1, p.workers) : std::nan("");
     std::fprintf(stderr, "%scalibrate: runs %d/%d (%d from ledger)  evaluations %d  best objective %.4g  elapsed %s  ETA <= %s%s",
                  tty ? "\r" : "", p.runs_used, p.max_runs, p.from_ledger, p.evaluations, p.best_objective,
                  clock_text(p.elapsed_s).c_str(), clock_text(eta).c_str(), tty ? "   " : "\n");
