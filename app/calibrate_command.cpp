@@ -14,9 +14,12 @@
 #include "app/commands.hpp"
 #include "calibrate/calibration.hpp"
 #include "calibrate/report.hpp"
+#include "reports/clock_text.hpp"
 
 namespace gradem::app {
 namespace {
+
+using report::clock_text;
 
 struct CalibrateOptions {
     std::string config, out;
@@ -39,14 +42,6 @@ CalibrateOptions parse_calibrate(const std::vector<std::string>& args) {
     }
     if (o.config.empty()) throw UsageError("calibrate needs a config file: gradem calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]");
     return o;
-}
-
-std::string clock_text(double seconds) {
-    if (!std::isfinite(seconds) || seconds < 0) return "?";
-    const long s = std::lround(seconds);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-    return buf;
 }
 
 /// The progress line: rewritten in place on a terminal, one line per run otherwise. The ETA

@@ -19,9 +19,12 @@
 #include "experiments/cube_output.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/packing_cache.hpp"
+#include "reports/clock_text.hpp"
 
 namespace gradem::app {
 namespace {
+
+using report::clock_text;
 
 using Clock = std::chrono::steady_clock;
 
@@ -44,15 +47,6 @@ CompressOptions parse_compress(const std::vector<std::string>& args) {
     }
     if (o.config.empty()) throw UsageError("compress needs a config file: gradem compress <config.toml> [--out DIR] [--check-rate] [--vtk]");
     return o;
-}
-
-std::string clock_text(double seconds) {
-    if (!std::isfinite(seconds) || seconds < 0) return "?";
-    const long s = std::lround(seconds);
-    char buf[32];
-    if (s >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", s / 3600, (s / 60) % 60);
-    else std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-    return buf;
 }
 
 /// One progress line on stderr: rewritten in place on a terminal (every second), a new line

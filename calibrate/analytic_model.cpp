@@ -9,6 +9,7 @@
 // 1 + noise·z with z a deterministic pseudo-normal draw from (sand, seed, output).
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "calibrate/cube_model.hpp"
 #include "core/random.hpp"
@@ -72,7 +73,6 @@ public:
         std::snprintf(buf, sizeof buf, "analytic stand-in v1; sands %zu; noise %a; diverge %a", sands_, noise_, diverge_above_);
         return buf;
     }
-    std::size_t sand_count() const override { return sands_; }
 
 private:
     std::size_t sands_;
@@ -83,48 +83,6 @@ private:
 
 std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise, double diverge_above_gpa) {
     return std::make_unique<AnalyticCubeModel>(sands, noise, diverge_above_gpa);
-}
-
-const char* to_string(RunStatus s) {
-    switch (s) {
-        case RunStatus::ok: return "ok";
-        case RunStatus::diverged: return "diverged";
-        case RunStatus::timeout: return "timeout";
-        case RunStatus::failed: return "failed";
-    }
-    return "failed";
-}
-
-RunStatus run_status_from(const std::string& t) {
-    if (t == "ok") return RunStatus::ok;
-    if (t == "diverged") return RunStatus::diverged;
-    if (t == "timeout") return RunStatus::timeout;
-    return RunStatus::failed;
-}
-
-std::string material_key(const exp::MaterialParams& m) {
-    const BondParams& b = m.bond;
-    const ContactParams& c = m.contact;
-    char buf[1024];
-    std::snprintf(buf, sizeof buf,
-                  "E*=%a k*=%a mu=%a Eb=%a kb=%a lam=%a beta=%a st=%a sts=%a c=%a cs=%a phi=%a bseed=%llu gapf=%a gapa=%a "
-                  "muw=%a damp=%a",
-                  c.effective_modulus, c.stiffness_ratio, c.friction, b.effective_modulus, b.stiffness_ratio,
-                  b.radius_multiplier, b.moment_factor, b.tensile_strength_mean, b.tensile_strength_std, b.cohesion_mean,
-                  b.cohesion_std, b.friction_angle_deg, static_cast<unsigned long long>(b.seed), m.bond_gap_fraction,
-                  m.bond_gap_absolute, m.platen_friction, m.damping);
-    return buf;
-}
-
-std::string fnv1a_hex(const std::string& text) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char ch : text) {
-        h ^= ch;
-        h *= 1099511628211ull;
-    }
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
 }
 
 }  // namespace gradem::cal

@@ -52,7 +52,6 @@ public:
     /// Everything that defines the runs besides the material (specimens, test, code version):
     /// part of every ledger key.
     [[nodiscard]] virtual std::string fingerprint() const = 0;
-    [[nodiscard]] virtual std::size_t sand_count() const = 0;
 };
 
 /// The real model for the named sands of the base cube config's dataset.

@@ -129,8 +129,6 @@ public:
         return f.str();
     }
 
-    std::size_t sand_count() const override { return curves_.size(); }
-
 private:
     exp::CubeConfig base_;
     std::vector<std::string> names_;

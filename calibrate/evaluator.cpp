@@ -7,6 +7,13 @@
 #include "calibrate/thread_pool.hpp"
 
 namespace gradem::cal {
+namespace {
+
+double output_of(const RunOutcome& r, Quantity q) {
+    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak ? r.peak_pa : r.strain_at_peak;
+}
+
+}  // namespace
 
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
                      std::string model_fingerprint, std::function<void(const Progress&)> progress)
@@ -47,16 +54,13 @@ SandOutcome Evaluator::summarise(std::size_t sand, const std::vector<RunOutcome>
         else if (s.failed++ == 0) s.failure = std::string(to_string(r.status)) + ": " + r.reason;
     }
     s.ok = static_cast<int>(good.size());
+    const double n = static_cast<double>(good.size());
     for (Quantity q : kQuantities) {
         const int k = static_cast<int>(q);
         double sum = 0.0, sq = 0.0;
-        for (const RunOutcome* r : good) sum += q == Quantity::modulus ? r->modulus_pa : q == Quantity::peak ? r->peak_pa : r->strain_at_peak;
-        const double n = static_cast<double>(good.size());
+        for (const RunOutcome* r : good) sum += output_of(*r, q);
         s.mean[k] = n > 0 ? sum / n : std::nan("");
-        for (const RunOutcome* r : good) {
-            const double v = q == Quantity::modulus ? r->modulus_pa : q == Quantity::peak ? r->peak_pa : r->strain_at_peak;
-            sq += (v - s.mean[k]) * (v - s.mean[k]);
-        }
+        for (const RunOutcome* r : good) sq += std::pow(output_of(*r, q) - s.mean[k], 2);
         s.std[k] = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
     }
     double nu = 0.0;

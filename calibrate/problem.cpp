@@ -163,11 +163,10 @@ void read_targets(Context& ctx, const toml::table& root, CalibrationProblem& p) 
     s.real("peak_weight", p.weights.peak);
     s.real("strain_weight", p.weights.strain);
     s.finish();
-    for (const char* k : {"modulus_weight", "peak_weight", "strain_weight"}) {
-        const double w = k[0] == 'm' ? p.weights.modulus : k[0] == 'p' ? p.weights.peak : p.weights.strain;
+    for (const auto& [key, w] : {std::pair<const char*, double>{"modulus_weight", p.weights.modulus},
+                                 {"peak_weight", p.weights.peak}, {"strain_weight", p.weights.strain}})
         if (!(w >= 0.0 && std::isfinite(w)))
-            throw InputError(ctx.file, ctx.keys[std::string("targets.") + k].line, std::string("key 'targets.") + k + "' must be >= 0");
-    }
+            throw InputError(ctx.file, ctx.keys[std::string("targets.") + key].line, std::string("key 'targets.") + key + "' must be >= 0");
     if (p.weights.modulus + p.weights.peak + p.weights.strain <= 0.0)
         throw InputError(ctx.file, ctx.keys["targets.modulus_weight"].line, "all target weights are zero");
     if (p.lab_results.empty())

@@ -6,11 +6,13 @@
 
 #include "calibrate/objective.hpp"
 #include "reports/atomic_file.hpp"
+#include "reports/clock_text.hpp"
 
 namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
+using report::clock_text;
 
 constexpr double kMetTolerance = 0.05;  // a target counts as met within 5 % of the lab mean
 
@@ -155,13 +157,6 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
                             {"strain_deviation", s.homogeneity.strain_deviation}, {"tolerance", p.solver.homogeneity_tolerance}};
     if (!st.prediction.sands.empty() && st.prediction.failed) j["prediction_failure"] = st.prediction.failure;
     return j;
-}
-
-std::string clock_text(double seconds) {
-    char buf[32];
-    const long s = std::lround(seconds);
-    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
-    return buf;
 }
 
 }  // namespace

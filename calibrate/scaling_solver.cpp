@@ -159,8 +159,9 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
                                        : "homogeneity does not hold within " + percent(ctx.problem.solver.homogeneity_tolerance));
         const double noise = noise_floor_objective(e1, ctx.problem);
         // 3. Shape search at x1's scales, each trial judged after its closed-form rescaling.
-        std::vector<double> best_point = rescale(ctx, idx, e1).point;
-        double best_predicted = rescale(ctx, idx, e1).predicted;
+        const Rescaling r_e1 = rescale(ctx, idx, e1);
+        std::vector<double> best_point = r_e1.point;
+        double best_predicted = r_e1.predicted;
         std::string stop = "no shape parameter is free";
         if (!idx.shape.empty()) {
             const int reserve = per_eval * (2 + static_cast<int>(idx.shape.size()));  // confirmation(s) + uncertainty

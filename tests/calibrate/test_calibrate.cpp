@@ -150,7 +150,6 @@ public:
         return inner_->run(q, t);
     }
     std::string fingerprint() const override { return inner_->fingerprint(); }
-    std::size_t sand_count() const override { return inner_->sand_count(); }
 
 private:
     std::unique_ptr<cal::CubeModel> inner_;
