@@ -60,7 +60,10 @@ SandOutcome Evaluator::summarise(std::size_t sand, const std::vector<RunOutcome>
         double sum = 0.0, sq = 0.0;
         for (const RunOutcome* r : good) sum += output_of(*r, q);
         s.mean[k] = n > 0 ? sum / n : std::nan("");
-        for (const RunOutcome* r : good) sq += std::pow(output_of(*r, q) - s.mean[k], 2);
+        for (const RunOutcome* r : good) {
+            const double d = output_of(*r, q) - s.mean[k];
+            sq += d * d;
+        }
         s.std[k] = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
     }
     double nu = 0.0;
