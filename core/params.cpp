@@ -19,6 +19,21 @@ bool non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
 
 }  // namespace
 
+const char* bond_model_name(BondModel model) {
+    switch (model) {
+        case BondModel::parallel_bond: return "parallel_bond";
+        case BondModel::soft_bond: return "soft_bond";
+        case BondModel::flat_joint: return "flat_joint";
+    }
+    return "unknown";
+}
+
+std::optional<BondModel> parse_bond_model(const std::string& name) {
+    for (BondModel m : {BondModel::parallel_bond, BondModel::soft_bond, BondModel::flat_joint})
+        if (name == bond_model_name(m)) return m;
+    return std::nullopt;
+}
+
 std::optional<std::string> ContactParams::invalid_reason() const {
     if (!positive(effective_modulus))
         return violation("ContactParams::effective_modulus", effective_modulus, "> 0");
@@ -47,6 +62,16 @@ std::optional<std::string> BondParams::invalid_reason() const {
         return violation("BondParams::cohesion_std", cohesion_std, ">= 0");
     if (!(friction_angle_deg >= 0.0 && friction_angle_deg < 90.0))
         return violation("BondParams::friction_angle_deg", friction_angle_deg, "in [0, 90)");
+    if (!positive(soft.softening_factor))
+        return violation("SoftBondParams::softening_factor", soft.softening_factor, "> 0");
+    if (!(soft.cut_fraction >= 0.0 && soft.cut_fraction < 1.0))
+        return violation("SoftBondParams::cut_fraction", soft.cut_fraction, "in [0, 1)");
+    if (flat.radial_elements < 1)
+        return violation("FlatJointParams::radial_elements", flat.radial_elements, ">= 1");
+    if (flat.angular_elements < 1)
+        return violation("FlatJointParams::angular_elements", flat.angular_elements, ">= 1");
+    if (!non_negative(flat.residual_friction))
+        return violation("FlatJointParams::residual_friction", flat.residual_friction, ">= 0");
     return std::nullopt;
 }
 

@@ -18,7 +18,30 @@ struct ContactParams {
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
-/// Parallel bond (Potyondy & Cundall 2004; PFC linearpbond). Bond stiffness per unit area
+/// Which law the installed bonds follow. Each law is one kernel header in core/ (issue 9):
+/// parallel_bond (Potyondy & Cundall 2004, PFC linearpbond), soft_bond (PFC softbond
+/// semantics, models.md §1), flat_joint (Potyondy 2012, models.md §3).
+enum class BondModel : std::uint8_t { parallel_bond = 0, soft_bond = 1, flat_joint = 2 };
+
+/// "parallel_bond", "soft_bond", "flat_joint" (the names configs and reports use).
+const char* bond_model_name(BondModel model);
+/// The model of that name, or nullopt for an unknown name.
+std::optional<BondModel> parse_bond_model(const std::string& name);
+
+/// Soft bond shape parameters (models.md §1): at σ̄_c the bond softens instead of breaking.
+struct SoftBondParams {
+    double softening_factor = 0.3;  ///< ζ: softening slope is -ζ k̄_n [Pa/m], > 0 [-]
+    double cut_fraction = 0.2;      ///< γ: breaks once the softened stress is <= γ σ̄_c, in [0, 1) [-]
+};
+
+/// Flat joint shape parameters (models.md §3): the interface disc split into elements.
+struct FlatJointParams {
+    std::int32_t radial_elements = 1;   ///< N_r, >= 1
+    std::int32_t angular_elements = 4;  ///< N_α, >= 1
+    double residual_friction = 0.5;     ///< μ of a broken element, >= 0 [-]
+};
+
+/// Bond parameters (Potyondy & Cundall 2004; PFC linearpbond) shared by every bond model. Bond stiffness per unit area
 /// k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n / κ̄. Strengths are drawn per bond from normal
 /// distributions truncated to positive values (mean, std), seeded by `seed` and the pair ids.
 struct BondParams {
@@ -32,6 +55,9 @@ struct BondParams {
     double cohesion_std = 0.0;              ///< c̄ standard deviation [Pa]
     double friction_angle_deg = 0.0;        ///< φ̄ [degrees], in [0, 90)
     std::uint64_t seed = 1;                 ///< strength draws: same seed + pair = same strength
+    BondModel model = BondModel::parallel_bond;  ///< which law the bonds follow
+    SoftBondParams soft;                    ///< used when model == soft_bond
+    FlatJointParams flat;                   ///< used when model == flat_joint
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
