@@ -22,6 +22,7 @@ struct CommandLine {
     fs::path out = "lab_out";
     bool write = true, json = false, per_cube = false;
     std::optional<fs::path> config;
+    fs::path c144;
     std::optional<std::string> format;
     std::vector<std::pair<std::string, std::string>> columns, units;
 };
@@ -46,6 +47,7 @@ CommandLine parse(const std::vector<std::string>& args) {
         else if (a == "--cubes") c.per_cube = true;
         else if (a == "--config") c.config = value();
         else if (a == "--format") c.format = value();
+        else if (a == "--c144") c.c144 = value();
         else if (a == "--column") c.columns.push_back(role_value(a, value()));
         else if (a == "--unit") c.units.push_back(role_value(a, value()));
         else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
@@ -88,6 +90,16 @@ LabStats analyse(const CommandLine& c) {
         return analyse_lab_dataset(c.inputs.front());
     }
     std::vector<fs::path> files(c.inputs.begin(), c.inputs.end());
+    std::size_t sieves = 0;
+    for (const auto& f : files) sieves += is_sieve_csv_file(f) ? 1 : 0;
+    if (sieves == files.size()) {
+        if (c.config || c.format || !c.columns.empty() || !c.units.empty())
+            throw UsageError("--config/--format/--column/--unit apply to load-frame exports, not sieve analyses");
+        return analyse_sieve_files(files, c.c144);
+    }
+    if (sieves > 0)
+        throw UsageError("sieve analyses and load-frame exports given together: run them separately, or use a dataset");
+    if (!c.c144.empty()) throw UsageError("--c144 applies to sieve analyses");
     return analyse_lab_files(files, options_for_files(c));
 }
 
@@ -102,6 +114,10 @@ Reads lab data and reduces it to the statistics calibration uses.
       Cu, Cc, USCS, fineness modulus, ASTM C144 verdicts) and Table 4-style statistics
       (ASTM C109 strength, strain at peak, ASTM C469 chord modulus), Welch t-tests
       between sands, ASTM C109 permissible-range flags.
+  sieve analysis files (CSV with opening_mm and percent_passing or mass_retained_g + a pan
+      row; recognised from the header): each file's gradation (Table 2, D-values, Cu, Cc,
+      USCS, fineness modulus; ASTM C144 with --c144); impossible tables are rejected naming
+      the file, line and rule.
   export files (MTS TestSuite CSV, MTS 793 specimen.dat, Instron Bluehill RawData, plain CSV;
       the format is detected from the content): each file is reduced.
 
@@ -113,6 +129,8 @@ options:
   --cubes             also print one row per cube
   --config FILE       for export files: a TOML with [specimen], [reduction], [columns]
   --format NAME       for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv
+  --c144 FILE         for sieve analyses: ASTM C144 limits CSV to check them against
+                      (e.g. lab_data/datasets/study/astm_c144_natural_sand.csv)
   --column ROLE=NAME  for export files: take column NAME as ROLE
                       (time, load, crosshead, strain, lateral_strain, stress)
   --unit ROLE=UNIT    for export files: unit of ROLE's column (e.g. load=kN)

@@ -246,10 +246,12 @@ void write_lab_outputs(const fs::path& dir, const LabStats& lab) {
 }
 
 void print_lab_report(std::ostream& out, const LabStats& lab, bool per_cube) {
-    out << "gradem lab: " << lab.dataset << " (" << lab.source << "), " << lab.cubes.size() << " cubes\n";
+    if (lab.cubes.empty()) out << "gradem lab: " << lab.sands.size() << " sieve analyses\n";
+    else out << "gradem lab: " << lab.dataset << " (" << lab.source << "), " << lab.cubes.size() << " cubes\n";
     if (lab.representative)
         out << "*** REPRESENTATIVE DATA, NOT MEASUREMENTS: " << (lab.note.empty() ? "see the dataset README" : lab.note) << " ***\n";
     print_gradation(out, lab);
+    if (lab.cubes.empty()) return;  // sieve analyses only: no strength statistics
     print_statistics(out, lab);
     print_flags(out, lab);
     if (per_cube) print_cubes(out, lab);

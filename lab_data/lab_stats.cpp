@@ -159,4 +159,34 @@ LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConf
     return lab;
 }
 
+namespace {
+
+// "pre-blended (natural river sand ...)" -> "pre-blended"; falls back to the file stem.
+std::string sand_name_of(const SieveAnalysis& sieve, const fs::path& file) {
+    for (const MetaEntry& m : sieve.metadata)
+        if (m.key == "sand" && !trim(m.value).empty()) {
+            const std::string v{trim(m.value)};
+            const auto paren = v.find(" (");
+            return paren == std::string::npos ? v : v.substr(0, paren);
+        }
+    return file.stem().string();
+}
+
+}  // namespace
+
+LabStats analyse_sieve_files(const std::vector<fs::path>& files, const fs::path& c144_limits) {
+    LabStats lab;
+    lab.dataset = "sieve analyses";
+    lab.source = "sieve files";
+    std::optional<C144Limits> limits;
+    if (!c144_limits.empty()) limits = read_c144_limits(c144_limits);
+    for (const fs::path& f : files) {
+        SandResult sand;
+        gradation_of(sand, f, limits ? &*limits : nullptr);
+        sand.name = sand_name_of(*sand.sieve, f);
+        lab.sands.push_back(std::move(sand));
+    }
+    return lab;
+}
+
 }  // namespace gradem::lab

@@ -85,6 +85,11 @@ LabStats analyse_lab_dataset(const DatasetConfig& config);
 /// the result has one pseudo-sand "files" with their statistics.
 LabStats analyse_lab_files(const std::vector<std::filesystem::path>& files, const DatasetConfig& config);
 
+/// Sieve analyses given as files (`gradem lab sieve.csv ...`): one sand per file, named by its
+/// "# sand:" line (text before " (") or else the file stem, with gradation indices and, when
+/// `c144_limits` is not empty, the ASTM C144 check. Throws InputError for impossible tables.
+LabStats analyse_sieve_files(const std::vector<std::filesystem::path>& files, const std::filesystem::path& c144_limits);
+
 /// Reads and reduces one export; InputError when the curve cannot be reduced (e.g. the C469
 /// modulus window is never reached), naming the file and the line of the sample concerned.
 CubeResult reduce_cube_file(const std::filesystem::path& path, const std::string& display_name, const DatasetConfig& config);

@@ -12,7 +12,9 @@
 #include "lab_data/sieve_table.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -206,5 +208,25 @@ C144Limits parse_c144_limits(std::string_view bytes, const std::string& file) {
 }
 
 C144Limits read_c144_limits(const std::filesystem::path& path) { return parse_c144_limits(read_file_bytes(path), path.string()); }
+
+bool looks_like_sieve_csv(std::string_view bytes) {
+    const Preamble p = split_preamble(bytes);
+    const std::string_view rest = std::string_view(p.text).substr(p.header_offset);
+    std::string header(rest.substr(0, rest.find('\n')));
+    std::transform(header.begin(), header.end(), header.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool opening = header.find("opening_mm") != std::string::npos;
+    const bool passing = header.find("percent_passing") != std::string::npos ||
+                         header.find("mass_retained_g") != std::string::npos;
+    return opening && passing;
+}
+
+bool is_sieve_csv_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::string head(64 * 1024, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    return looks_like_sieve_csv(head);
+}
 
 }  // namespace gradem::lab

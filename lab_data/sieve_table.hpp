@@ -47,6 +47,11 @@ struct SieveAnalysis {
 SieveAnalysis parse_sieve_csv(std::string_view bytes, const std::string& file);
 SieveAnalysis read_sieve_csv(const std::filesystem::path& path);
 
+/// True when the file's header row (after "# key: value" lines) names an `opening_mm` column
+/// and a `percent_passing` or `mass_retained_g` column: a sieve analysis, not a load-frame export.
+bool looks_like_sieve_csv(std::string_view bytes);
+bool is_sieve_csv_file(const std::filesystem::path& path);
+
 struct C144Limit {
     std::string designation;
     double opening_m = 0;

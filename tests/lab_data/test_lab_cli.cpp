@@ -157,3 +157,32 @@ TEST_CASE("lab: usage: --help unknown options overrides from the command line", 
     CHECK(o.status == 1);  // a length column cannot be the load
     CHECK_THAT(o.err, Catch::Contains("unit 'mm' is a length unit; expected a force unit"));
 }
+
+TEST_CASE("lab: sieve analysis files are recognised and their gradation printed", "[lab][cli][sieve]") {
+    // The masses fixture reproduces Van Buren's Table 2 passing: D50 0.394 mm as for the dataset.
+    const Run r = run({fixture("sieve_masses.csv"), "--no-write", "--json"});
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["sands"].size() == 1);
+    CHECK(j["cubes"].empty());
+    const Run table = run({fixture("sieve_passing.csv"), kStudy + "/sieve_van_buren.csv", "--no-write", "--c144",
+                           kStudy + "/astm_c144_natural_sand.csv"});
+    REQUIRE(table.status == 0);
+    CHECK_THAT(table.out, Catch::Contains("2 sieve analyses") && Catch::Contains("Table 2") &&
+                              Catch::Contains("Van Buren") && Catch::Contains("does not conform"));
+    CHECK_THAT(table.out, !Catch::Contains("Table 4"));
+
+    // Impossible tables: named by file, line and rule; nothing written.
+    const fs::path out = scratch("sieve_bad");
+    const Run up = run({fixture("sieve_nonmonotonic.csv"), "--out", out.string()});
+    CHECK(up.status == 1);
+    CHECK_THAT(up.err, Catch::Contains("sieve_nonmonotonic.csv:4:") &&
+                           Catch::Contains("must not increase as the opening gets smaller"));
+    const Run sum = run({fixture("sieve_masses_bad_sum.csv"), "--out", out.string()});
+    CHECK(sum.status == 1);
+    CHECK_THAT(sum.err, Catch::Contains("sieve_masses_bad_sum.csv:") && Catch::Contains("add up to"));
+    CHECK_FALSE(fs::exists(out / "lab_results.json"));
+
+    // Mixed inputs are a usage error.
+    CHECK(run({fixture("sieve_passing.csv"), fixture("plain.csv"), "--no-write"}).status == 2);
+}
