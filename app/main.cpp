@@ -21,6 +21,8 @@ constexpr const char* kUsage =
     "                                          cube test of a config: load curve, cracks, macro.json\n"
     "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
+    "  study <study.toml> [--out DIR] [--workers N]\n"
+    "                                          parameter study (gradation_effect, resolution, ...)\n"
     "  --help, --version\n";
 
 }  // namespace
@@ -61,6 +63,7 @@ int main(int argc, char** argv) {
         if (all[0] == "specimen") return gradem::app::run_specimen(rest);
         if (all[0] == "compress") return gradem::app::run_compress(rest);
         if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
+        if (all[0] == "study") return gradem::app::run_study(rest);
         throw gradem::app::UsageError("unknown command '" + all[0] + "'");
     } catch (const gradem::app::UsageError& e) {
         std::cerr << "gradem: " << e.what() << "\n" << kUsage;

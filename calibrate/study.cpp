@@ -1,0 +1,213 @@
+// The study kinds (study_config.hpp) on top of the calibration's Evaluator: every simulated
+// configuration ("case") is a set of parameter points run on every sand and seed, through the
+// study's own ledger.
+#include "calibrate/study.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <memory>
+
+#include "calibrate/calibration.hpp"
+#include "calibrate/evaluator.hpp"
+#include "calibrate/ledger.hpp"
+#include "calibrate/study_kinds.hpp"
+#include "lab_data/input_error.hpp"
+#include "lab_data/statistics.hpp"
+
+namespace gradem::cal {
+namespace {
+
+namespace fs = std::filesystem;
+using lab::InputError;
+using nlohmann::json;
+
+double output_of(const RunOutcome& r, Quantity q) {
+    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak ? r.peak_pa : r.strain_at_peak;
+}
+
+json read_json(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) throw InputError(file.string(), 0, "cannot read the calibration summary");
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        throw InputError(file.string(), 0, std::string("not a JSON calibration summary: ") + e.what());
+    }
+}
+
+}  // namespace
+
+// --- statistics --------------------------------------------------------------------------
+
+double student_t_975(double dof) {
+    if (!(dof > 0.0)) return std::nan("");
+    double lo = 0.0, hi = 1000.0;  // p(t) = two-sided tail; find p = 0.05
+    for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (lab::student_t_two_sided_p(mid, dof) > 0.05 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+Sample sample_of(const std::vector<double>& values) {
+    const lab::SampleSummary s = lab::summarize(values);
+    return {s.mean, s.std, static_cast<int>(s.n)};
+}
+
+Interval welch_interval(const Sample& a, const Sample& b) {
+    Interval out{a.mean - b.mean, std::nan(""), std::nan("")};
+    if (a.n < 2 || b.n < 2) return out;
+    const double va = a.std * a.std / a.n, vb = b.std * b.std / b.n;
+    const double se = std::sqrt(va + vb);
+    if (!(se > 0.0)) {
+        out.low = out.high = out.estimate;
+        return out;
+    }
+    // Welch-Satterthwaite degrees of freedom.
+    const double dof = (va + vb) * (va + vb) / (va * va / (a.n - 1) + vb * vb / (b.n - 1));
+    const double t = student_t_975(dof);
+    out.low = out.estimate - t * se;
+    out.high = out.estimate + t * se;
+    return out;
+}
+
+Sample StudyCase::sample(std::size_t sand, Quantity q) const {
+    std::vector<double> v;
+    for (const RunOutcome& r : runs[sand])
+        if (r.ok()) v.push_back(output_of(r, q));
+    return sample_of(v);
+}
+
+double StudyCase::mean_particles(std::size_t sand) const {
+    double sum = 0.0;
+    for (const RunOutcome& r : runs[sand]) sum += static_cast<double>(r.particles);
+    return runs[sand].empty() ? 0.0 : sum / static_cast<double>(runs[sand].size());
+}
+
+double StudyCase::mean_wall_seconds(std::size_t sand) const {
+    double sum = 0.0;
+    int n = 0;
+    for (const RunOutcome& r : runs[sand])
+        if (r.wall_seconds > 0.0) sum += r.wall_seconds, ++n;
+    return n ? sum / n : std::nan("");
+}
+
+int StudyCase::failed() const {
+    int n = 0;
+    for (const auto& sand : runs)
+        for (const RunOutcome& r : sand) n += r.ok() ? 0 : 1;
+    return n;
+}
+
+// --- the calibration studied ---------------------------------------------------------------
+
+CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
+    const std::string where = summary_json.string();
+    if (!fs::exists(summary_json)) throw InputError(where, 0, "calibration summary not found; run `gradem calibrate <config>` first");
+    const json j = read_json(summary_json);
+    if (j.value("schema", "") != "gradem-calibration/1")
+        throw InputError(where, 0, "not a gradem calibration summary (schema \"gradem-calibration/1\" expected)");
+    CalibratedPoint cp;
+    cp.summary = summary_json;
+    const fs::path config = j.value("config", "");
+    if (config.empty() || !fs::exists(config))
+        throw InputError(where, 0, "the calibration's config '" + config.string() +
+                                       "' is not reachable from here (run the study from the folder the calibration ran in)");
+    cp.problem = load_calibration_problem(config);
+    if (j.value("sands", std::vector<std::string>{}) != cp.problem.sands)
+        throw InputError(where, 0, "belongs to another problem: its sands differ from those of " + config.string());
+    if (j.value("lab_results", "") != cp.problem.lab_results.string())
+        throw InputError(where, 0, "belongs to another dataset: lab results " + j.value("lab_results", "") + " vs " +
+                                       cp.problem.lab_results.string() + " in " + config.string());
+    for (ParameterSpec& spec : cp.problem.parameters) {
+        const json* found = nullptr;
+        for (const json& p : j.at("parameters"))
+            if (p.value("name", "") == spec.name) found = &p;
+        if (!found || !found->contains("value") || !(*found)["value"].is_number())
+            throw InputError(where, 0, "has no calibrated value for parameter '" + spec.name + "'");
+        const double v = (*found)["value"].get<double>();
+        if (spec.free && !(v >= spec.lower && v <= spec.upper))
+            throw InputError(where, 0, "parameter '" + spec.name + "' = " + std::to_string(v) +
+                                           " is outside the config's bounds: the config changed since the calibration");
+        spec.start = v;
+    }
+    cp.values = ParameterSpace(cp.problem.parameters, cp.problem.base.material).start();
+    cp.bond_model = bond_model_name(cp.problem.base.material.bond.model);
+    return cp;
+}
+
+// --- running cases -------------------------------------------------------------------------
+
+StudyRunner::StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log)
+    : config_(config), log_(std::move(log)),
+      ledger_(std::make_unique<Ledger>(config.ledger, fnv1a_hex(config.describe()), config.describe())) {
+    if (const auto rows = ledger_->size()) say("ledger " + config.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
+}
+
+StudyRunner::~StudyRunner() = default;
+
+void StudyRunner::say(const std::string& line) const {
+    if (log_) log_(line);
+}
+
+std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::vector<std::vector<double>>& points,
+                                        const std::vector<std::string>& labels, const std::vector<double>& xs) {
+    problem.seeds = config_.seeds;
+    problem.workers = config_.workers;
+    problem.timeout_s = config_.timeout_s;
+    problem.solver.max_runs = 1 << 30;  // a study runs what it asks for
+    auto model = make_model(problem);
+    model->prepare(problem.seeds, problem.workers, [this](const std::string& s) { say(s); });
+    const ParameterSpace space(problem.parameters, problem.base.material);
+    Evaluator evaluator(problem, space, *model, *ledger_, model->fingerprint());
+    std::vector<std::size_t> sands;
+    for (std::size_t s = 0; s < problem.sands.size(); ++s) sands.push_back(s);
+    const std::vector<Evaluation> evals = evaluator.evaluate(points, sands, labels.empty() ? "study" : labels.front());
+    executed_ += evaluator.runs_executed();
+    from_ledger_ += evaluator.runs_from_ledger();
+    failed_ += evaluator.runs_failed();
+    std::vector<StudyCase> cases;
+    for (std::size_t k = 0; k < evals.size(); ++k) {
+        StudyCase c;
+        c.label = k < labels.size() ? labels[k] : "case " + std::to_string(k + 1);
+        c.x = k < xs.size() ? xs[k] : 0.0;
+        c.sands = problem.sands;
+        c.runs.assign(sands.size(), {});
+        const std::size_t per_sand = problem.seeds.size();
+        for (std::size_t r = 0; r < evals[k].runs.size(); ++r) c.runs[r / per_sand].push_back(evals[k].runs[r]);
+        say(c.label + ": " + std::to_string(evals[k].runs.size()) + " runs, " + std::to_string(c.failed()) + " failed");
+        cases.push_back(std::move(c));
+    }
+    return cases;
+}
+
+// --- the whole study -----------------------------------------------------------------------
+
+StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log) {
+    const auto start = std::chrono::steady_clock::now();
+    StudyResult result;
+    result.config = config;
+    if (config.kind == StudyKind::model_form) {
+        run_model_form(config, result);
+    } else {
+        const CalibratedPoint point = load_calibrated_point(config.calibration);
+        result.calibration_summaries.push_back(config.calibration.string());
+        result.representative = point.problem.representative;
+        StudyRunner runner(config, log);
+        switch (config.kind) {
+            case StudyKind::gradation_effect: run_gradation_effect(point, runner, result); break;
+            case StudyKind::resolution: run_size_sweep(point, runner, result, SweepKind::edge); break;
+            case StudyKind::fines_truncation: run_size_sweep(point, runner, result, SweepKind::min_diameter); break;
+            case StudyKind::sensitivity: run_sensitivity(point, runner, result); break;
+            case StudyKind::model_form: break;
+        }
+        result.runs_executed = runner.executed();
+        result.runs_from_ledger = runner.from_ledger();
+        result.runs_failed = runner.failed();
+    }
+    result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace gradem::cal

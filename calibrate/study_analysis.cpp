@@ -1,0 +1,217 @@
+// The analysis half of the sweep studies, sensitivity and model_form (see study_kinds.hpp).
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "calibrate/study_kinds.hpp"
+#include "lab_data/input_error.hpp"
+
+namespace gradem::cal {
+namespace {
+
+using nlohmann::json;
+using lab::InputError;
+
+const char* label(Quantity q) {
+    return q == Quantity::modulus ? "chord modulus" : q == Quantity::peak ? "peak stress" : "strain at peak";
+}
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+double output_of(const RunOutcome& r, Quantity q) {
+    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak ? r.peak_pa : r.strain_at_peak;
+}
+
+}  // namespace
+
+// A property has converged at case k when every later step changes its mean by less than the
+// seed standard deviation of the two cases it joins (the noise a user sees at one size).
+void summarise_convergence(StudyResult& result) {
+    const auto& cases = result.cases;
+    StudyTable t{"Convergence with the cube edge", {"sand", "property", "converged from", "last change", "seed std there"}, {}};
+    json conv = json::array();
+    for (std::size_t s = 0; s < cases.front().sands.size(); ++s)
+        for (Quantity q : kQuantities) {
+            std::size_t from = cases.size();  // none yet
+            double last_change = std::nan(""), last_std = std::nan("");
+            for (std::size_t k = cases.size(); k-- > 1;) {
+                const Sample a = cases[k - 1].sample(s, q), b = cases[k].sample(s, q);
+                const double change = std::fabs(b.mean - a.mean);
+                const double noise = std::max(a.std, b.std);
+                if (k == cases.size() - 1) last_change = change / std::fabs(b.mean), last_std = noise / std::fabs(b.mean);
+                if (!(change < noise)) break;
+                from = k - 1;
+            }
+            const bool converged = from < cases.size();
+            const std::string at = converged ? cases[from].label : "not within the sweep";
+            t.rows.push_back({{cases.front().sands[s], label(q), at, fmt_num(100.0 * last_change, 3) + " %",
+                               fmt_num(100.0 * last_std, 3) + " %"}});
+            conv.push_back({{"sand", cases.front().sands[s]}, {"quantity", to_string(q)}, {"converged", converged},
+                            {"from_x", converged ? json(cases[from].x) : json(nullptr)}, {"last_relative_change", number(last_change)},
+                            {"relative_seed_std", number(last_std)}});
+            if (q != Quantity::strain)
+                result.verdict.push_back(cases.front().sands[s] + ", " + label(q) + ": " +
+                                         (converged ? "changes less than the seed spread from " + at + " on"
+                                                    : "still changes more than the seed spread at the largest edge"));
+        }
+    result.tables.push_back(t);
+    result.data["convergence"] = conv;
+}
+
+// Error of each cut against the finest (smallest d_min) case, and whether it is within the
+// 95 % noise of the two means; cost as particles and wall time per run relative to the finest.
+void summarise_truncation(StudyResult& result) {
+    const auto& cases = result.cases;
+    const StudyCase& finest = cases.front();
+    StudyTable t{"Cost against error, relative to the finest cut (" + finest.label + ")",
+                 {"smallest grain", "sand", "particles x", "wall time x", "modulus error", "peak error", "strain error", "within noise"}, {}};
+    json rows = json::array();
+    for (const StudyCase& c : cases)
+        for (std::size_t s = 0; s < c.sands.size(); ++s) {
+            StudyRow row{{c.label, c.sands[s], fmt_num(c.mean_particles(s) / finest.mean_particles(s), 3),
+                          fmt_num(c.mean_wall_seconds(s) / finest.mean_wall_seconds(s), 3)}};
+            bool within = true;
+            json errors;
+            for (Quantity q : kQuantities) {
+                const Sample a = c.sample(s, q), f = finest.sample(s, q);
+                const double err = a.mean / f.mean - 1.0;
+                const double noise = 1.96 * std::sqrt(a.std * a.std / std::max(1, a.n) + f.std * f.std / std::max(1, f.n));
+                within = within && std::fabs(a.mean - f.mean) <= noise;
+                row.cells.push_back(fmt_num(100.0 * err, 3) + " %");
+                errors[to_string(q)] = number(err);
+            }
+            row.cells.push_back(within ? "yes" : "no");
+            t.rows.push_back(row);
+            rows.push_back({{"x", c.x}, {"sand", c.sands[s]}, {"particles_ratio", number(c.mean_particles(s) / finest.mean_particles(s))},
+                            {"wall_ratio", number(c.mean_wall_seconds(s) / finest.mean_wall_seconds(s))},
+                            {"relative_error", errors}, {"within_noise", within}});
+        }
+    result.tables.push_back(t);
+    result.data["truncation"] = rows;
+    const StudyCase* coarsest_ok = &finest;
+    for (const StudyCase& c : cases) {
+        bool ok = true;
+        for (const json& r : rows)
+            if (r["x"] == c.x && !r["within_noise"].get<bool>()) ok = false;
+        if (ok) coarsest_ok = &c;
+        else break;
+    }
+    result.verdict.push_back("the coarsest cut whose modulus, peak and strain stay within the 95 % seed noise of the finest: " +
+                             coarsest_ok->label + " (" + fmt_num(coarsest_ok->mean_particles(0) / finest.mean_particles(0), 3) +
+                             " x the particles of the finest, first sand)");
+}
+
+// One-at-a-time elasticities with common random numbers: each seed's run at the perturbed point
+// is paired with the same seed at the calibrated point, so the seed noise largely cancels.
+//   log parameter:    e = Δ ln y / Δ ln p      linear parameter:  e = Δ ln y / Δp
+void run_sensitivity(const CalibratedPoint& point, StudyRunner& runner, StudyResult& result) {
+    const StudyConfig& cfg = result.config;
+    const ParameterSpace space(point.problem.parameters, point.problem.base.material);
+    std::vector<std::size_t> chosen;
+    if (cfg.parameters.empty()) {
+        for (std::size_t k = 0; k < space.size(); ++k) chosen.push_back(k);
+    } else {
+        for (const std::string& name : cfg.parameters) {
+            const auto k = space.index_of(name);
+            if (!k) throw InputError(cfg.file.string(), 0, "study.parameters: '" + name + "' is not a free parameter of the calibration");
+            chosen.push_back(*k);
+        }
+    }
+    std::vector<std::vector<double>> points{point.values};
+    std::vector<std::string> labels{"calibrated"};
+    std::vector<double> steps{0.0};
+    for (std::size_t k : chosen) {
+        const ParameterSpec& spec = space.free(k);
+        std::vector<double> v = point.values;
+        const double up = spec.log_scale ? v[k] * (1.0 + cfg.step) : v[k] + cfg.step * (spec.upper - spec.lower);
+        const double down = spec.log_scale ? v[k] / (1.0 + cfg.step) : v[k] - cfg.step * (spec.upper - spec.lower);
+        v[k] = up <= spec.upper ? up : down;  // stay inside the bounds
+        points.push_back(v);
+        labels.push_back(spec.name);
+        steps.push_back(spec.log_scale ? std::log(v[k] / point.values[k]) : v[k] - point.values[k]);
+    }
+    result.cases = runner.run(point.problem, points, labels, steps);
+    const StudyCase& base = result.cases.front();
+    StudyTable t{"Elasticities d ln(property) / d ln(parameter) (per unit for linear parameters), mean ± standard error over seeds",
+                 {"parameter", "sand", "chord modulus", "peak stress", "strain at peak"}, {}};
+    json rows = json::array();
+    for (std::size_t c = 1; c < result.cases.size(); ++c) {
+        const StudyCase& pert = result.cases[c];
+        const ParameterSpec& spec = space.free(chosen[c - 1]);
+        for (std::size_t s = 0; s < base.sands.size(); ++s) {
+            StudyRow row{{spec.name + (spec.log_scale ? "" : " (per unit)"), base.sands[s]}};
+            json j = {{"parameter", spec.name}, {"scale", spec.log_scale ? "log" : "linear"}, {"sand", base.sands[s]}};
+            for (Quantity q : kQuantities) {
+                std::vector<double> e;
+                for (std::size_t r = 0; r < base.runs[s].size() && r < pert.runs[s].size(); ++r)
+                    if (base.runs[s][r].ok() && pert.runs[s][r].ok())
+                        e.push_back(std::log(output_of(pert.runs[s][r], q) / output_of(base.runs[s][r], q)) / pert.x);
+                const Sample m = sample_of(e);
+                const double se = m.n > 1 ? m.std / std::sqrt(static_cast<double>(m.n)) : std::nan("");
+                row.cells.push_back(mean_pm(m.mean, se, 3));
+                j[to_string(q)] = {{"elasticity", number(m.mean)}, {"std_error", number(se)}, {"n", m.n}};
+            }
+            t.rows.push_back(row);
+            rows.push_back(j);
+        }
+    }
+    result.tables.push_back(t);
+    result.data = {{"elasticities", rows}, {"step", cfg.step}};
+    for (Quantity q : kQuantities) {
+        std::string best;
+        double best_e = -1.0;
+        for (const json& r : rows)
+            if (r[to_string(q)]["elasticity"].is_number() && r["scale"] == "log" &&
+                std::fabs(r[to_string(q)]["elasticity"].get<double>()) > best_e)
+                best_e = std::fabs(r[to_string(q)]["elasticity"].get<double>()), best = r["parameter"];
+        if (!best.empty())
+            result.verdict.push_back(std::string(label(q)) + " moves most with " + best + " (|elasticity| " + fmt_num(best_e, 3) + ")");
+    }
+}
+
+// model_form: no runs; the calibrations of several bond models (or representations) side by
+// side on cost and on the three targets, with the shape index D = E ε_peak / σ_peak.
+void run_model_form(const StudyConfig& cfg, StudyResult& result) {
+    StudyTable t{"Calibrated models side by side",
+                 {"model", "summary", "DEM runs", "wall s", "sand", "modulus error", "peak error", "strain error", "D sim", "D lab"}, {}};
+    json models = json::array();
+    double best_score = 1e300;
+    std::string best;
+    for (const auto& file : cfg.calibrations) {
+        const CalibratedPoint cp = load_calibrated_point(file);
+        result.calibration_summaries.push_back(file.string());
+        result.representative = result.representative || cp.problem.representative;
+        std::ifstream in(file);
+        const json j = json::parse(in);
+        json m = {{"model", cp.bond_model}, {"summary", file.string()}, {"runs", j.value("dem_test_runs", 0)},
+                  {"wall_seconds", j.value("wall_seconds", 0.0)}, {"sands", json::array()}};
+        double worst = 0.0;
+        for (const std::string& sand : cp.problem.sands) {
+            double err[3] = {NAN, NAN, NAN}, sim[3] = {NAN, NAN, NAN}, lab[3] = {NAN, NAN, NAN};
+            for (const json& r : j.at("targets")) {
+                if (r.value("sand", "") != sand) continue;
+                for (Quantity q : kQuantities)
+                    if (r.value("quantity", "") == to_string(q)) {
+                        const int k = static_cast<int>(q);
+                        err[k] = r["rel_error"].is_number() ? r["rel_error"].get<double>() : NAN;
+                        sim[k] = r["sim_mean"].is_number() ? r["sim_mean"].get<double>() : NAN;
+                        lab[k] = r["lab_mean"].is_number() ? r["lab_mean"].get<double>() : NAN;
+                    }
+            }
+            const double d_sim = sim[0] * sim[2] / sim[1], d_lab = lab[0] * lab[2] / lab[1];
+            for (double e : err) worst = std::max(worst, std::isfinite(e) ? std::fabs(e) : 1e300);
+            t.rows.push_back({{cp.bond_model, file.parent_path().filename().string(), std::to_string(j.value("dem_test_runs", 0)),
+                               fmt_num(j.value("wall_seconds", 0.0), 4), sand, fmt_num(100 * err[0], 3) + " %",
+                               fmt_num(100 * err[1], 3) + " %", fmt_num(100 * err[2], 3) + " %", fmt_num(d_sim, 3), fmt_num(d_lab, 3)}});
+            m["sands"].push_back({{"sand", sand}, {"modulus_error", number(err[0])}, {"peak_error", number(err[1])},
+                                  {"strain_error", number(err[2])}, {"shape_index_sim", number(d_sim)}, {"shape_index_lab", number(d_lab)}});
+        }
+        m["worst_error"] = number(worst);
+        models.push_back(m);
+        if (worst < best_score) best_score = worst, best = cp.bond_model + " (" + file.string() + ")";
+    }
+    result.tables.push_back(t);
+    result.data = {{"models", models}};
+    result.verdict.push_back("smallest worst-target error: " + best + ", " + fmt_num(100 * best_score, 3) + " %");
+}
+
+}  // namespace gradem::cal

@@ -1,0 +1,156 @@
+// `gradem study` on the analytic stand-in: the kinds' numbers against the stand-in's closed
+// form, resume from the ledger, and the bad inputs of the study files.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+
+#include "calibrate/report.hpp"
+#include "calibrate/study.hpp"
+#include "calibrate_fixture.hpp"
+#include "experiments/cube_config.hpp"
+#include "lab_data/input_error.hpp"
+
+namespace fs = std::filesystem;
+using namespace gradem;
+using gradem::test::TempDir;
+
+namespace {
+
+const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
+
+/// A calibrated analytic problem in `dir`: lab targets from the stand-in at the base material,
+/// a short scaling calibration, its summary.json in dir/cal. Returns the summary path.
+fs::path calibrated_summary(const fs::path& dir) {
+    auto model = cal::make_analytic_model(kSands.size());
+    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
+    test::write_text(dir / "lab_results.json", test::synthetic_lab_results(*model, kSands, base, {101, 102, 103, 104}).dump(1));
+    const fs::path toml = test::write_problem(dir, "model = \"analytic\"\nseeds = [1, 2]\n",
+                                              "[solver]\nmax_runs = 30\n[output]\ndir = \"" + (dir / "cal").string() + "\"\n");
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
+    auto m = cal::make_model(problem);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *m);
+    cal::write_calibration_outputs(problem, r);
+    return dir / "cal" / "summary.json";
+}
+
+fs::path write_study(const fs::path& dir, const std::string& study_keys, const std::string& name = "study.toml") {
+    test::write_text(dir / name, "[study]\n" + study_keys + "\n[output]\ndir = \"" + (dir / "study-out").string() + "\"\n");
+    return dir / name;
+}
+
+std::string error_of(const fs::path& toml) {
+    try {
+        const cal::StudyConfig c = cal::load_study_config(toml);
+        cal::run_study(c);
+    } catch (const lab::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("study: Student-t quantile and Welch interval", "[calibrate][study]") {
+    CHECK(cal::student_t_975(1.0) == Approx(12.706).epsilon(1e-4));
+    CHECK(cal::student_t_975(10.0) == Approx(2.228).epsilon(1e-4));
+    CHECK(cal::student_t_975(1e6) == Approx(1.960).epsilon(1e-3));
+    // Equal samples, n = 5 each, std 1: se = sqrt(2/5), dof = 8, t = 2.306.
+    const cal::Interval i = cal::welch_interval({10.0, 1.0, 5}, {8.0, 1.0, 5});
+    CHECK(i.estimate == Approx(2.0));
+    CHECK(i.high - i.estimate == Approx(2.306 * std::sqrt(0.4)).epsilon(1e-3));
+    CHECK(std::isnan(cal::welch_interval({1, 0, 1}, {1, 0, 5}).low));
+}
+
+TEST_CASE("study: gradation_effect gives the seed statistics of the model and a verdict; resumes from the ledger",
+          "[calibrate][study]") {
+    TempDir dir("study-gradation");
+    const fs::path summary = calibrated_summary(dir.path);
+    const fs::path toml = write_study(dir.path, "kind = \"gradation_effect\"\ncalibration = \"" + summary.string() + "\"\nseeds = [11, 12, 13, 14]");
+    const cal::StudyConfig config = cal::load_study_config(toml);
+    const cal::StudyResult r = cal::run_study(config);
+    REQUIRE(r.cases.size() == 1);
+    CHECK(r.runs_executed == 8);  // 2 sands x 4 seeds
+    // Oracle: the same runs made directly with the calibrated material.
+    const cal::CalibratedPoint cp = cal::load_calibrated_point(summary);
+    const exp::MaterialParams m = cal::ParameterSpace(cp.problem.parameters, cp.problem.base.material).material(cp.values);
+    auto model = cal::make_analytic_model(kSands.size());
+    std::vector<double> peaks[2];
+    for (std::size_t s = 0; s < 2; ++s)
+        for (std::uint64_t seed : config.seeds) peaks[s].push_back(model->run({s, seed, m}, 0.0).peak_pa);
+    const cal::Sample a = cal::sample_of(peaks[0]), b = cal::sample_of(peaks[1]);
+    const nlohmann::json& pair = r.data["pairs"][1];  // modulus, peak, strain
+    REQUIRE(pair["quantity"] == "peak_stress");
+    CHECK(pair["simulated"]["estimate"].get<double>() == Approx((a.mean - b.mean) * 1e-6).epsilon(1e-12));
+    CHECK(pair["simulated"]["low"].get<double>() < pair["simulated"]["estimate"].get<double>());
+    CHECK(pair["lab"]["estimate"].get<double>() == Approx((cp.problem.targets[0].peak.mean - cp.problem.targets[1].peak.mean) * 1e-6));
+    REQUIRE(r.verdict.size() == 3);
+    cal::write_study_outputs(r);
+    CHECK(fs::exists(config.out_dir / "study.json"));
+    CHECK(fs::exists(config.out_dir / "study.md"));
+
+    // Run again: every run is served by the ledger, with the same answer.
+    const cal::StudyResult again = cal::run_study(config);
+    CHECK(again.runs_executed == 0);
+    CHECK(again.runs_from_ledger == 8);
+    CHECK(again.data["pairs"] == r.data["pairs"]);
+}
+
+TEST_CASE("study: sensitivity recovers the stand-in's exact elasticities", "[calibrate][study]") {
+    TempDir dir("study-sensitivity");
+    const fs::path summary = calibrated_summary(dir.path);
+    const fs::path toml = write_study(dir.path, "kind = \"sensitivity\"\ncalibration = \"" + summary.string() +
+                                                    "\"\nseeds = [1, 2, 3]\nparameters = [\"effective_modulus_gpa\", \"tensile_strength_mpa\", \"cohesion_ratio\"]");
+    const cal::StudyResult r = cal::run_study(cal::load_study_config(toml));
+    REQUIRE(r.cases.size() == 4);
+    // E = E* k (…): d ln E / d ln E* = 1; σ ∝ σ̄c (c̄/σ̄c)^q with c̄/σ̄c held: 1; d ln σ / d ln(c̄/σ̄c) = q_s.
+    const double q[2] = {0.35, 0.25};
+    for (const nlohmann::json& row : r.data["elasticities"]) {
+        const std::size_t s = row["sand"] == kSands[0] ? 0 : 1;
+        INFO(row.dump());
+        if (row["parameter"] == "effective_modulus_gpa") {
+            CHECK(row["modulus"]["elasticity"].get<double>() == Approx(1.0).epsilon(1e-9));
+            CHECK(std::fabs(row["peak_stress"]["elasticity"].get<double>()) < 1e-9);
+        } else if (row["parameter"] == "tensile_strength_mpa") {
+            CHECK(row["peak_stress"]["elasticity"].get<double>() == Approx(1.0).epsilon(1e-9));
+            CHECK(std::fabs(row["modulus"]["elasticity"].get<double>()) < 1e-9);
+        } else {
+            CHECK(row["peak_stress"]["elasticity"].get<double>() == Approx(q[s]).epsilon(1e-9));
+        }
+    }
+}
+
+TEST_CASE("study: model_form tabulates calibrations with their shape index", "[calibrate][study]") {
+    TempDir dir("study-model-form");
+    const fs::path summary = calibrated_summary(dir.path);
+    const fs::path toml = write_study(dir.path, "kind = \"model_form\"\ncalibrations = [\"" + summary.string() + "\"]");
+    const cal::StudyResult r = cal::run_study(cal::load_study_config(toml));
+    REQUIRE(r.data["models"].size() == 1);
+    const auto& sand = r.data["models"][0]["sands"][0];
+    CHECK(sand["shape_index_lab"].get<double>() > 0.5);
+    CHECK(r.runs_executed == 0);
+}
+
+TEST_CASE("study: bad study files are refused naming the file, key and rule", "[calibrate][study][errors]") {
+    TempDir dir("study-errors");
+    const fs::path summary = calibrated_summary(dir.path);
+    const std::string cal_key = "calibration = \"" + summary.string() + "\"\n";
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"gradation_effect\"\ncalibration = \"nope/summary.json\"")),
+               Catch::Contains("study.toml:3: key 'study.calibration'") && Catch::Contains("not found"));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = []")),
+               Catch::Contains("study.toml:4: key 'study.edges_mm'"));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = [2.5]")),
+               Catch::Contains("needs at least two cube edges"));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = [1.0, 2.5]")),
+               Catch::Contains("study.edges_mm value 1 mm") && Catch::Contains("3 x the largest grain"));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"sideways\"\n" + cal_key)), Catch::Contains("key 'study.kind' = \"sideways\""));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = [2.5, 3.0]\nmin_diameters_mm = [0.1, 0.2]")),
+               Catch::Contains("belongs to kind \"fines_truncation\""));
+    // A summary of another dataset: its lab results are not those of its config any more.
+    nlohmann::json j;
+    std::ifstream(summary) >> j;
+    j["lab_results"] = "/elsewhere/lab_results.json";
+    test::write_text(dir.path / "other.json", j.dump());
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"gradation_effect\"\ncalibration = \"" + (dir.path / "other.json").string() + "\"")),
+               Catch::Contains("other.json") && Catch::Contains("belongs to another dataset"));
+    CHECK_FALSE(fs::exists(dir.path / "study-out" / "study.json"));
+}
