@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "calibrate/calibration.hpp"
 #include "calibrate/report.hpp"
@@ -28,19 +29,12 @@ struct CalibrateOptions {
 
 CalibrateOptions parse_calibrate(const std::vector<std::string>& args) {
     CalibrateOptions o;
-    for (std::size_t k = 0; k < args.size(); ++k) {
-        auto value = [&]() -> const std::string& {
-            if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
-            return args[++k];
-        };
-        if (args[k] == "--out") o.out = value();
-        else if (args[k] == "--max-runs") o.max_runs = static_cast<int>(parse_int("--max-runs", value(), 1, 100000));
-        else if (args[k] == "--workers") o.workers = static_cast<int>(parse_int("--workers", value(), 1, 64));
-        else if (!args[k].empty() && args[k][0] == '-') throw UsageError("unknown option '" + args[k] + "' for calibrate");
-        else if (o.config.empty()) o.config = args[k];
-        else throw UsageError("calibrate takes one config file, got '" + o.config + "' and '" + args[k] + "'");
-    }
-    if (o.config.empty()) throw UsageError("calibrate needs a config file: gradem calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]");
+    CLI::App app{"Calibrate micro-parameters against the lab targets (calibrate/README.md lists the problem keys).", "gradem calibrate"};
+    app.add_option("config", o.config, "calibration problem TOML (e.g. calibrate/configs/joint.toml)")->required();
+    app.add_option("--out", o.out, "result folder (default: the problem's output.dir); the ledger moves with it unless set");
+    app.add_option("--max-runs", o.max_runs, "budget of DEM cube tests (overrides solver.max_runs)")->check(CLI::Range(1, 100000));
+    app.add_option("--workers", o.workers, "concurrent cube tests, one thread each (overrides run.workers)")->check(CLI::Range(1, 64));
+    parse_command(app, args);
     return o;
 }
 

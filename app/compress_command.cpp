@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_output.hpp"
@@ -35,17 +36,12 @@ struct CompressOptions {
 
 CompressOptions parse_compress(const std::vector<std::string>& args) {
     CompressOptions o;
-    for (std::size_t k = 0; k < args.size(); ++k) {
-        if (args[k] == "--out") {
-            if (k + 1 >= args.size()) throw UsageError("--out needs a value");
-            o.out = args[++k];
-        } else if (args[k] == "--check-rate") o.check_rate = true;
-        else if (args[k] == "--vtk") o.vtk = true;
-        else if (!args[k].empty() && args[k][0] == '-') throw UsageError("unknown option '" + args[k] + "' for compress");
-        else if (o.config.empty()) o.config = args[k];
-        else throw UsageError("compress takes one config file, got '" + o.config + "' and '" + args[k] + "'");
-    }
-    if (o.config.empty()) throw UsageError("compress needs a config file: gradem compress <config.toml> [--out DIR] [--check-rate] [--vtk]");
+    CLI::App app{"The virtual ASTM C109 cube test of a cube config: load_curve.csv, cracks.csv, macro.json.", "gradem compress"};
+    app.add_option("config", o.config, "cube config TOML (experiments/README.md lists its keys)")->required();
+    app.add_option("--out", o.out, "result folder (default: the config's output.dir)");
+    app.add_flag("--check-rate", o.check_rate, "run again at half the strain rate and report the change (quasi-static check)");
+    app.add_flag("--vtk", o.vtk, "write ParaView files (vtk/cube.pvd) as well");
+    parse_command(app, args);
     return o;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "lab_data/lab_command.hpp"
 
@@ -23,7 +24,7 @@ constexpr const char* kUsage =
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
     "  study <study.toml> [--out DIR] [--workers N]\n"
     "                                          parameter study (gradation_effect, resolution, ...)\n"
-    "  --help, --version\n";
+    "  --help, --version                       (gradem <command> --help: that command's options)\n";
 
 }  // namespace
 
@@ -64,9 +65,13 @@ int main(int argc, char** argv) {
         if (all[0] == "compress") return gradem::app::run_compress(rest);
         if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
         if (all[0] == "study") return gradem::app::run_study(rest);
-        throw gradem::app::UsageError("unknown command '" + all[0] + "'");
+        std::cerr << "gradem: unknown command '" << all[0] << "'\n" << kUsage;
+        return 2;
+    } catch (const gradem::app::HelpRequested& help) {
+        std::cout << help.text;
+        return 0;
     } catch (const gradem::app::UsageError& e) {
-        std::cerr << "gradem: " << e.what() << "\n" << kUsage;
+        std::cerr << "gradem: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {
         std::cerr << "gradem: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "core/parallel.hpp"
 #include "experiments/platen_compression.hpp"
@@ -26,17 +27,12 @@ struct QuickCubeOptions {
 
 QuickCubeOptions parse_quick_cube(const std::vector<std::string>& args) {
     QuickCubeOptions o;
-    for (std::size_t k = 0; k < args.size(); ++k) {
-        auto value = [&]() {
-            if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
-            return args[++k];
-        };
-        if (args[k] == "--particles") o.particles = parse_int(args[k], value(), 100, 2000000);
-        else if (args[k] == "--seed") o.seed = static_cast<std::uint64_t>(parse_int(args[k], value(), 0, 1LL << 62));
-        else if (args[k] == "--out") o.out = value();
-        else if (args[k] == "--strain-rate") o.strain_rate = parse_int(args[k], value(), 1, 1000);
-        else throw UsageError("unknown option '" + args[k] + "' for quick-cube");
-    }
+    CLI::App app{"A bonded cube of jittered spheres compressed between platens past its peak (engine smoke run).", "gradem quick-cube"};
+    app.add_option("--particles", o.particles, "number of spheres")->check(CLI::Range(std::int64_t{100}, std::int64_t{2000000}));
+    app.add_option("--seed", o.seed, "packing and strength seed");
+    app.add_option("--strain-rate", o.strain_rate, "platen strain rate [1/s]")->check(CLI::Range(1.0, 1000.0));
+    app.add_option("--out", o.out, "folder for curve.csv (default: no files)");
+    parse_command(app, args);
     return o;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/genesis.hpp"
@@ -23,13 +24,10 @@ struct SpecimenOptions {
 
 SpecimenOptions parse_specimen(const std::vector<std::string>& args) {
     SpecimenOptions o;
-    for (const std::string& a : args) {
-        if (a == "--show") o.show = true;
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for specimen");
-        else if (o.config.empty()) o.config = a;
-        else throw UsageError("specimen takes one config file, got '" + o.config + "' and '" + a + "'");
-    }
-    if (o.config.empty()) throw UsageError("specimen needs a config file: gradem specimen <config.toml> [--show]");
+    CLI::App app{"Generate (or load from the packing cache) the packing of a cube config and describe it.", "gradem specimen"};
+    app.add_option("config", o.config, "cube config TOML")->required();
+    app.add_flag("--show", o.show, "only load the cached packing (an error if there is none)");
+    parse_command(app, args);
     return o;
 }
 

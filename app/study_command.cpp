@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "calibrate/study.hpp"
 
@@ -19,18 +20,11 @@ struct StudyOptions {
 
 StudyOptions parse_study(const std::vector<std::string>& args) {
     StudyOptions o;
-    for (std::size_t k = 0; k < args.size(); ++k) {
-        auto value = [&]() -> const std::string& {
-            if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
-            return args[++k];
-        };
-        if (args[k] == "--out") o.out = value();
-        else if (args[k] == "--workers") o.workers = static_cast<int>(parse_int("--workers", value(), 1, 64));
-        else if (!args[k].empty() && args[k][0] == '-') throw UsageError("unknown option '" + args[k] + "' for study");
-        else if (o.file.empty()) o.file = args[k];
-        else throw UsageError("study takes one study file, got '" + o.file + "' and '" + args[k] + "'");
-    }
-    if (o.file.empty()) throw UsageError("study needs a study file: gradem study <study.toml> [--out DIR] [--workers N]");
+    CLI::App app{"Run a parameter study (experiments/studies/*.toml; kinds in experiments/README.md).", "gradem study"};
+    app.add_option("study", o.file, "study TOML")->required();
+    app.add_option("--out", o.out, "result folder (default: the study's output.dir)");
+    app.add_option("--workers", o.workers, "concurrent cube tests, one thread each")->check(CLI::Range(1, 64));
+    parse_command(app, args);
     return o;
 }
 

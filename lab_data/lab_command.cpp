@@ -1,5 +1,7 @@
 #include "lab_data/lab_command.hpp"
 
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -33,27 +35,35 @@ std::pair<std::string, std::string> role_value(const std::string& opt, const std
     return {arg.substr(0, eq), arg.substr(eq + 1)};
 }
 
-CommandLine parse(const std::vector<std::string>& args) {
+CommandLine parse(std::vector<std::string> args) {
     CommandLine c;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
-        if (a == "--out") c.out = value();
-        else if (a == "--no-write") c.write = false;
-        else if (a == "--json") c.json = true;
-        else if (a == "--cubes") c.per_cube = true;
-        else if (a == "--config") c.config = value();
-        else if (a == "--format") c.format = value();
-        else if (a == "--c144") c.c144 = value();
-        else if (a == "--column") c.columns.push_back(role_value(a, value()));
-        else if (a == "--unit") c.units.push_back(role_value(a, value()));
-        else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else c.inputs.push_back(a);
+    std::vector<std::string> columns, units;
+    std::string format;
+    fs::path config;
+    CLI::App app{"Lab statistics from sieve analyses and load-frame exports.", "gradem lab"};
+    app.set_help_flag();  // the usage text below is the help
+    app.add_option("inputs", c.inputs)->required();
+    app.add_option("--out", c.out);
+    app.add_flag("--no-write", [&c](std::int64_t) { c.write = false; });
+    app.add_flag("--json", c.json);
+    app.add_flag("--cubes", c.per_cube);
+    app.add_option("--config", config);
+    app.add_option("--format", format);
+    app.add_option("--c144", c.c144);
+    app.add_option("--column", columns)->allow_extra_args(false);
+    app.add_option("--unit", units)->allow_extra_args(false);
+    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last-first
+    try {
+        app.parse(args);
+    } catch (const CLI::RequiredError&) {
+        throw UsageError("no input: give a dataset folder, a dataset .toml, or export files");
+    } catch (const CLI::ParseError& e) {
+        throw UsageError(e.what());
     }
-    if (c.inputs.empty()) throw UsageError("no input: give a dataset folder, a dataset .toml, or export files");
+    if (!config.empty()) c.config = config;
+    if (!format.empty()) c.format = format;
+    for (const auto& v : columns) c.columns.push_back(role_value("--column", v));
+    for (const auto& v : units) c.units.push_back(role_value("--unit", v));
     return c;
 }
 

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libnlopt-cxx-dev libnlopt-dev libceres-dev libfccp-dev catch2
-  libtomlplusplus-dev nlohmann-json3-dev libsqlite3-dev
+  libtomlplusplus-dev nlohmann-json3-dev libsqlite3-dev libcli11-dev
   clang
 )
 
