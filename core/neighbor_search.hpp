@@ -36,4 +36,15 @@ public:
 /// Uniform cell grid with cell edge >= 2 R_max + max_gap; O(N) for bounded size ratios.
 std::unique_ptr<NeighborSearch> make_cell_grid_search();
 
+/// Multi-level grid (Ogarko & Luding 2012), levels chosen from the size distribution
+/// (core/multilevel_grid.cpp); O(N) at any size ratio.
+std::unique_ptr<NeighborSearch> make_multilevel_grid_search();
+
+/// Radius ratio R_max / R_min above which the automatic search uses the multi-level grid.
+inline constexpr double kMultilevelRadiusRatio = 3.0;
+
+/// The default: on every call, the cell grid when R_max / R_min <= kMultilevelRadiusRatio,
+/// else the multi-level grid. Both return the same pairs, so the choice never changes results.
+std::unique_ptr<NeighborSearch> make_neighbor_search();
+
 }  // namespace gradem
