@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bench/neighbor_bench.hpp"
+#include "core/openmp_policy.hpp"
 #include "core/parallel.hpp"
 #include "core/world.hpp"
 #include "experiments/platen_compression.hpp"
@@ -176,6 +177,7 @@ void print_sample(const Sample& s, double speedup, bool json) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    use_sleeping_openmp_threads(argv);
     try {
         const Options o = parse(argc, argv);
         if (o.neighbors > 0) {
