@@ -13,10 +13,12 @@
 //      place a partner can be): top-down (large scan fine cells) or bottom-up (small scan
 //      coarse cells), whichever the cost model below finds cheaper;
 //   5. pairs are counting-sorted by (i, j): the output does not depend on the thread count.
-// Level choice (plan_levels): level bounds are geometric between s_min and s_max (Krijgsman,
-// Ogarko & Luding 2014, Comp. Part. Mech. 1:357, "constant cell-size ratio" hierarchy); the
-// number of levels L = 1..8 minimises their cost estimate, evaluated on a 64-bin histogram
-// of s for uniform particle density n_l / V per level:
+// Level choice (plan_levels), after Krijgsman, Ogarko & Luding 2014 (Comp. Part. Mech.
+// 1:357: choose levels and cell sizes by minimising an estimate of the search time for the
+// given size distribution), in a simplified form: level bounds are geometric between s_min
+// and s_max (constant cell-size ratio), and the number of levels L = 1..8 minimises the
+// cost estimate below, evaluated on a 64-bin histogram of s with uniform particle density
+// n_l / V per level (V: bounding box padded by one s_max):
 //   same level   n_l [14 + 13.5 n_l c_l^3 / V]           (cell visits + distance checks)
 //   a scans b    n_a (π/6)((c_a + c_b)/c_b + 2)^3 [1 + n_b c_b^3 / V]
 //   cross level  min(l scans m, m scans l) for every m < l: top-down (a large grain visits
