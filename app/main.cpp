@@ -7,6 +7,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "core/openmp_policy.hpp"
 #include "lab_data/lab_command.hpp"
 
 namespace {
@@ -48,6 +49,7 @@ std::int64_t parse_int(const std::string& option, const std::string& value, std:
 }  // namespace gradem::app
 
 int main(int argc, char** argv) {
+    gradem::use_sleeping_openmp_threads(argv);
     const std::vector<std::string> all(argv + 1, argv + argc);
     if (all.empty() || all[0] == "--help" || all[0] == "-h") {
         std::cout << kUsage;

@@ -5,6 +5,8 @@
 // speed-up. Not a test: numbers depend on the machine; quote medians of several runs.
 //
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json]
+//   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
+//                at size ratios 1, 10, 50 instead: bench/neighbor_bench.cpp)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/neighbor_bench.hpp"
+#include "core/openmp_policy.hpp"
 #include "core/parallel.hpp"
 #include "core/world.hpp"
 #include "experiments/platen_compression.hpp"
@@ -30,6 +34,7 @@ struct Options {
     std::int64_t steps = 1000;
     int repeat = 3;
     bool json = false;
+    std::int64_t neighbors = 0;  ///< > 0: neighbour-search rows for this many particles
 };
 
 template <class T>
@@ -54,9 +59,11 @@ Options parse(int argc, char** argv) {
         else if (a == "--steps") o.steps = std::stoll(value());
         else if (a == "--repeat") o.repeat = std::stoi(value());
         else if (a == "--json") o.json = true;
+        else if (a == "--neighbors") o.neighbors = std::stoll(value());
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
-                         "[--repeat R] [--json]\n";
+                         "[--repeat R] [--json]\n"
+                         "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n";
             std::exit(0);
         } else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
     }
@@ -170,8 +177,13 @@ void print_sample(const Sample& s, double speedup, bool json) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    use_sleeping_openmp_threads(argv);
     try {
         const Options o = parse(argc, argv);
+        if (o.neighbors > 0) {
+            bench::run_neighbor_bench(o.neighbors, o.threads, o.repeat, o.json);
+            return 0;
+        }
         if (!o.json) {
             std::printf("gradem-bench: bonded packing (radius ratio 3) between closing platens; "
                         "median of %d runs\n", o.repeat);

@@ -2,8 +2,9 @@
 // Broad phase: which particle pairs are close enough to interact. The World asks for all pairs
 // with a gap no larger than `max_gap` (the Verlet skin) and keeps the answer until particles
 // have moved far enough to invalidate it. Implementations are swappable: the uniform cell grid
-// below suits size ratios up to ~5-10; a multi-level grid (Ogarko & Luding 2012) for wide size
-// ratios plugs in through the same interface without touching the force code.
+// suits narrow size distributions; the multi-level grid (Ogarko & Luding 2012,
+// core/multilevel_grid.cpp) stays O(N) at size ratios of 50 and more; make_neighbor_search()
+// (the World's default) picks one per call. All return the same pairs in the same order.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -35,5 +36,16 @@ public:
 
 /// Uniform cell grid with cell edge >= 2 R_max + max_gap; O(N) for bounded size ratios.
 std::unique_ptr<NeighborSearch> make_cell_grid_search();
+
+/// Multi-level grid (Ogarko & Luding 2012), levels chosen from the size distribution
+/// (core/multilevel_grid.cpp); O(N) at any size ratio.
+std::unique_ptr<NeighborSearch> make_multilevel_grid_search();
+
+/// Radius ratio R_max / R_min above which the automatic search uses the multi-level grid.
+inline constexpr double kMultilevelRadiusRatio = 3.0;
+
+/// The default: on every call, the cell grid when R_max / R_min <= kMultilevelRadiusRatio,
+/// else the multi-level grid. Both return the same pairs, so the choice never changes results.
+std::unique_ptr<NeighborSearch> make_neighbor_search();
 
 }  // namespace gradem

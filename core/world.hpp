@@ -29,7 +29,7 @@ class World {
 public:
     /// Validates every parameter and particle; throws std::invalid_argument naming the field.
     World(ParticleSet particles, const ContactParams& contact, const SimParams& sim,
-          std::unique_ptr<NeighborSearch> search = make_cell_grid_search());
+          std::unique_ptr<NeighborSearch> search = make_neighbor_search());
 
     // --- set-up -------------------------------------------------------------------------
     std::int32_t add_wall(Wall wall);
