@@ -21,6 +21,8 @@ constexpr const char* kUsage =
     "                                          cube test of a config: load curve, cracks, macro.json\n"
     "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
+    "  report <lab|compress|calibrate> <folder>\n"
+    "                                          (re)make report.html from a command's outputs\n"
     "  --help, --version\n";
 
 }  // namespace
@@ -56,11 +58,12 @@ int main(int argc, char** argv) {
     }
     const std::vector<std::string> rest(all.begin() + 1, all.end());
     try {
-        if (all[0] == "lab") return gradem::lab::run_lab_command(rest);
+        if (all[0] == "lab") return gradem::lab::run_lab_command(rest, gradem::app::write_lab_report);
         if (all[0] == "quick-cube") return gradem::app::run_quick_cube(rest);
         if (all[0] == "specimen") return gradem::app::run_specimen(rest);
         if (all[0] == "compress") return gradem::app::run_compress(rest);
         if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
+        if (all[0] == "report") return gradem::app::run_report(rest);
         throw gradem::app::UsageError("unknown command '" + all[0] + "'");
     } catch (const gradem::app::UsageError& e) {
         std::cerr << "gradem: " << e.what() << "\n" << kUsage;
