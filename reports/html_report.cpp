@@ -168,7 +168,7 @@ HtmlReportOutcome write_html_report(ReportKind kind, const fs::path& out_dir) {
 bool write_html_report_or_warn(ReportKind kind, const fs::path& out_dir, std::ostream& announce) {
     const HtmlReportOutcome o = write_html_report(kind, out_dir);
     if (o.written()) {
-        announce << "report: " << o.path.string() << "\n";
+        announce << "report: " << o.path.lexically_normal().string() << "\n";
         return true;
     }
     std::cerr << "gradem: warning: no report.html in " << out_dir.string() << ": " << o.problem << "\n"

@@ -10,7 +10,7 @@ import numpy as np
 
 from figures import MODE_COLORS, message_panel, new_figure, to_svg
 from inputs import field, finite, number, read_csv, read_json, require
-from page import Page, fmt, pct
+from page import Page, fixed, fmt, pct
 
 WRITER = "gradem compress"
 CURVE_COLUMNS = ["platen_strain", "gauge_strain", "lateral_strain", "stress_mpa", "stress_top_mpa", "stress_bottom_mpa",
@@ -73,11 +73,11 @@ def read_columns(path, columns):
 def headline(macro):
     broken = macro.get("broken_bonds") or {}
     run = macro.get("run") or {}
-    return [("peak stress", f"{fmt(macro.get('peak_stress_mpa'), 4)} MPa", "C109: largest stress sample", ""),
-            ("strain at peak", f"{fmt(finite(macro.get('strain_at_peak')) * 1e3, 3)} ‰",
-             f"gauge; platen {fmt(finite(macro.get('strain_at_peak_platen')) * 1e3, 3)} ‰", ""),
-            ("chord modulus", f"{fmt(finite(macro.get('chord_modulus_mpa')) / 1e3, 4)} GPa", "ASTM C469, gauge strain", ""),
-            ("Poisson's ratio", fmt(macro.get("poisson_ratio"), 3), "ASTM C469", ""),
+    return [("peak stress", f"{fixed(macro.get('peak_stress_mpa'), 2)} MPa", "C109: largest stress sample", ""),
+            ("strain at peak", f"{fixed(finite(macro.get('strain_at_peak')) * 1e3, 2)} ‰",
+             f"gauge; platen {fixed(finite(macro.get('strain_at_peak_platen')) * 1e3, 2)} ‰", ""),
+            ("chord modulus", f"{fixed(finite(macro.get('chord_modulus_mpa')) / 1e3, 2)} GPa", "ASTM C469, gauge strain", ""),
+            ("Poisson's ratio", fixed(macro.get("poisson_ratio"), 3), "ASTM C469", ""),
             ("broken bonds", f"{broken.get('total', '?')}", f"{broken.get('tension', '?')} tension, {broken.get('shear', '?')} shear "
              f"of {run.get('bonds', '?')}", ""),
             ("run", str(run.get("stop_reason", "?")), f"{run.get('steps', '?')} steps, {fmt(run.get('wall_seconds'), 3)} s",
@@ -178,10 +178,10 @@ def crack_map_figure(cracks, macro):
     ax.set_title("Broken bonds projected on x–z")
     ax.legend(loc="upper right", markerscale=2)
     bins = np.linspace(0, 90, 10)
-    for mode in ("tension", "shear"):
-        angles = [math.degrees(math.acos(min(1.0, abs(k["nz"])))) for k in cracks if k["mode"] == mode and math.isfinite(k["nz"])]
-        if angles:
-            hist.hist(angles, bins=bins, alpha=0.6, color=MODE_COLORS[mode], label=mode, edgecolor="white")
+    modes = ("tension", "shear")
+    angles = [[math.degrees(math.acos(min(1.0, abs(k["nz"])))) for k in cracks if k["mode"] == m and math.isfinite(k["nz"])]
+              for m in modes]
+    hist.hist(angles, bins=bins, stacked=True, color=[MODE_COLORS[m] for m in modes], label=list(modes), edgecolor="white")
     hist.set_xlabel("angle between bond normal and loading axis [°]")
     hist.set_ylabel("broken bonds [-]")
     hist.set_xticks(bins)

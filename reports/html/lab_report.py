@@ -10,7 +10,7 @@ from matplotlib.ticker import FixedFormatter, FixedLocator, NullLocator
 
 from figures import message_panel, new_figure, sand_color, to_svg
 from inputs import field, finite, read_csv, read_json, number, require
-from page import Page, fmt, pct
+from page import Page, fixed, fmt, pct
 
 WRITER = "gradem lab ... --out DIR"
 
@@ -106,10 +106,10 @@ def headline(sands):
     items = []
     for s in sands:
         peak, chord, eps = stat(s, "peak_stress_mpa"), stat(s, "chord_modulus_mpa"), stat(s, "strain_at_peak")
-        items.append((f"{s['name']}: peak stress", f"{fmt(peak.get('mean'), 3)} ± {fmt(peak.get('std'), 2)} MPa",
+        items.append((f"{s['name']}: peak stress", f"{fixed(peak.get('mean'), 1)} ± {fixed(peak.get('std'), 1)} MPa",
                       f"n = {s.get('n', '?')}, CV {pct(peak.get('cv'), signed=False)}", ""))
-        items.append((f"{s['name']}: chord modulus", f"{fmt(finite(chord.get('mean')) / 1e3, 3)} GPa",
-                      f"± {fmt(finite(chord.get('std')) / 1e3, 2)} GPa; strain at peak {fmt(finite(eps.get('mean')) * 1e3, 3)} ‰", ""))
+        items.append((f"{s['name']}: chord modulus", f"{fixed(finite(chord.get('mean')) / 1e3, 2)} ± {fixed(finite(chord.get('std')) / 1e3, 2)} GPa",
+                      f"strain at peak {fixed(finite(eps.get('mean')) * 1e3, 2)} ± {fixed(finite(eps.get('std')) * 1e3, 2)} ‰", ""))
         g = s.get("gradation")
         if g:
             ok = g.get("c144_conforms")
@@ -129,6 +129,7 @@ def gradation_figure(sands):
         message_panel(ax, "no sieve analysis in these lab results (export files only)")
         ax.set_title("Gradation")
         return to_svg(fig)
+    ax.set_xscale("log")  # first: setting the scale resets the tick locators chosen below
     band = {}
     for _, s in graded:
         for c in s["gradation"].get("c144_checks") or []:
@@ -158,7 +159,6 @@ def gradation_figure(sands):
         bad = [c for c in g.get("c144_checks") or [] if not c.get("ok")]
         ax.plot([c["opening_mm"] for c in bad], [c["percent_passing"] for c in bad], "o", ms=10, mfc="none", mec="#b3261e",
                 mew=1.6, label="outside C144" if k == graded[0][0] else None)
-    ax.set_xscale("log")
     ax.set_xlabel("sieve opening [mm] (log scale)")
     ax.set_ylabel("percent passing [%]")
     ax.set_ylim(-2, 102)

@@ -149,6 +149,15 @@ def fmt(value, digits=4):
     return text
 
 
+def fixed(value, decimals):
+    """A number with a fixed number of decimals, '–' when missing."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return "–"
+    return "–" if v != v or v in (float("inf"), float("-inf")) else f"{v:.{decimals}f}"
+
+
 def pct(value, digits=1, signed=True):
     try:
         v = float(value) * 100.0
