@@ -35,7 +35,7 @@ def build(out_dir):
                 "Percent passing vs sieve opening (log scale); the grey band spans the C144 limits at the sieves that have them, "
                 "red rings mark sieves outside them.")
     page.table(*gradation_table(sands), caption="Gradation indices from the sieve analyses (D-values interpolated on the "
-               "log-size curve; Cu = D60/D10, Cc = D30²/(D10·D60); USCS per ASTM D2487).")
+               "log-size curve; Cu = D60/D10, Cc = D30²/(D10·D60); USCS per ASTM D2487).", text_columns=(0, 8, 9))
     for s in sands:
         violations = (s.get("gradation") or {}).get("c144_violations") or []
         if violations:
