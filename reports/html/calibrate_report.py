@@ -139,9 +139,9 @@ def unit_text(unit):
 
 def se_text(p):
     se = p.get("std_error") or {}
-    if "relative" in se:
+    if math.isfinite(finite(se.get("relative"))):
         return pct(se["relative"], signed=False)
-    if "absolute" in se:
+    if math.isfinite(finite(se.get("absolute"))):
         return f"{fmt(se['absolute'], 3)} {unit_text(p.get('unit'))}".strip()
     return "not computed"
 
@@ -166,10 +166,13 @@ def curves_figure(sands, stages, curves):
             ax.plot(np.array(e) * 1e3, s, "--", color="black", lw=1.8, label="lab mean (Popovics)")
         peak, strain = target(st, sand, "peak_stress"), target(st, sand, "strain_at_peak")
         if peak and strain:
-            ax.errorbar([finite(strain["lab_mean"]) * 1e3], [finite(peak["lab_mean"])], xerr=[finite(strain["lab_std"]) * 1e3],
-                        yerr=[finite(peak["lab_std"])], fmt="+", color="black", capsize=4, lw=1.3, label="lab peak ± 1 std")
+            xerr, yerr = finite(strain.get("lab_std")) * 1e3, finite(peak.get("lab_std"))  # NaN for a single cube
+            ax.errorbar([finite(strain.get("lab_mean")) * 1e3], [finite(peak.get("lab_mean"))],
+                        xerr=[xerr] if math.isfinite(xerr) else None, yerr=[yerr] if math.isfinite(yerr) else None, fmt="+",
+                        color="black", capsize=4, lw=1.3, label="lab peak ± 1 std")
         role = (peak or {}).get("role", "fitted")
-        ax.set_title(f"{sand}" + (" (predicted)" if role == "predicted" else "") + (f" — {st['label']}" if len(stages) > 1 else ""))
+        stage_text = f" — {st['label']}" if len(stages) > 1 and st["label"] != sand else ""
+        ax.set_title(f"{sand}" + (" (predicted)" if role == "predicted" else "") + stage_text)
         ax.set_xlabel("axial strain ε [‰] (gauge)")
         ax.set_xlim(left=0)
         ax.set_ylim(bottom=0)
@@ -215,7 +218,8 @@ def errors_figure(sands, stages):
     ax.set_xticks(ticks)
     ax.set_xticklabels(labels)
     for g, (st, sand) in enumerate(groups):
-        ax.text(g, -0.13, sand + (f" ({st['label']})" if len(stages) > 1 else ""), transform=ax.get_xaxis_transform(),
+        ax.text(g, -0.13, sand + (f" ({st['label']})" if len(stages) > 1 and st["label"] != sand else ""),
+                transform=ax.get_xaxis_transform(),
                 ha="center", va="top", fontsize=10, fontweight="bold", color=sand_color(sands.index(sand)))
     ax.set_ylabel("relative error [%]")
     ax.set_title("Simulated vs lab: error of each target (E chord modulus, σp peak stress, εp strain at peak)")
@@ -341,7 +345,8 @@ def parameters_table(stages):
             interval = p.get("one_sigma_interval") or []
             rows.append([st["label"], f"{p['name']} [{p.get('unit', '-')}]", fmt(p.get("value"), 4),
                          se_text(p) if p.get("free") else "fixed",
-                         f"{fmt(interval[0], 3)} – {fmt(interval[1], 3)}" if len(interval) == 2 else "–",
+                         f"{fmt(interval[0], 3)} – {fmt(interval[1], 3)}"
+                         if len(interval) == 2 and all(math.isfinite(finite(v)) for v in interval) else "–",
                          f"[{fmt(p.get('lower'), 3)}, {fmt(p.get('upper'), 3)}]", fmt(p.get("start"), 4),
                          f"{p.get('scale', '')}, {'free' if p.get('free') else 'fixed'}"])
     return headers, rows

@@ -49,6 +49,8 @@ def message_panel(ax, text):
     ax.set_xticks([])
     ax.set_yticks([])
     ax.grid(False)
+    for spine in ax.spines.values():
+        spine.set_visible(False)
 
 
 def to_svg(fig):

@@ -34,8 +34,10 @@ def build(out_dir):
     page.figure(gradation_figure(sands), "Gradation curves and the ASTM C144 band",
                 "Percent passing vs sieve opening (log scale); the grey band spans the C144 limits at the sieves that have them, "
                 "red rings mark sieves outside them.")
-    page.table(*gradation_table(sands), caption="Gradation indices from the sieve analyses (D-values interpolated on the "
-               "log-size curve; Cu = D60/D10, Cc = D30²/(D10·D60); USCS per ASTM D2487).", text_columns=(0, 8, 9))
+    if any(s.get("gradation") for s in sands):
+        page.table(*gradation_table(sands), caption="Gradation indices from the sieve analyses (D-values interpolated on the "
+               "log-size curve; Cu = D60/D10, Cc = D30²/(D10·D60); USCS per ASTM D2487).",
+                   text_columns=(0, 8, 9))
     for s in sands:
         violations = (s.get("gradation") or {}).get("c144_violations") or []
         if violations:
@@ -106,10 +108,11 @@ def headline(sands):
     items = []
     for s in sands:
         peak, chord, eps = stat(s, "peak_stress_mpa"), stat(s, "chord_modulus_mpa"), stat(s, "strain_at_peak")
-        items.append((f"{s['name']}: peak stress", f"{fixed(peak.get('mean'), 1)} ± {fixed(peak.get('std'), 1)} MPa",
+        items.append((f"{s['name']}: peak stress", f"{fixed(peak.get('mean'), 1)}{spread(peak.get('std'), 1)} MPa",
                       f"n = {s.get('n', '?')}, CV {pct(peak.get('cv'), signed=False)}", ""))
-        items.append((f"{s['name']}: chord modulus", f"{fixed(finite(chord.get('mean')) / 1e3, 2)} ± {fixed(finite(chord.get('std')) / 1e3, 2)} GPa",
-                      f"strain at peak {fixed(finite(eps.get('mean')) * 1e3, 2)} ± {fixed(finite(eps.get('std')) * 1e3, 2)} ‰", ""))
+        items.append((f"{s['name']}: chord modulus",
+                      f"{fixed(finite(chord.get('mean')) / 1e3, 2)}{spread(finite(chord.get('std')) / 1e3, 2)} GPa",
+                      f"strain at peak {fixed(finite(eps.get('mean')) * 1e3, 2)}{spread(finite(eps.get('std')) * 1e3, 2)} ‰", ""))
         g = s.get("gradation")
         if g:
             ok = g.get("c144_conforms")
@@ -118,6 +121,11 @@ def headline(sands):
                           ("outside at " + ", ".join(failing)) if failing else f"{g.get('uscs', '')} {g.get('uscs_name', '')}",
                           "good" if ok else "bad"))
     return items
+
+
+def spread(std, decimals):
+    """' ± std', or nothing when there is no standard deviation (a single cube)."""
+    return f" ± {fixed(std, decimals)}" if math.isfinite(finite(std)) else ""
 
 
 # ----------------------------------------------------------------------------- figures
@@ -226,7 +234,8 @@ def spread_figure(sands, cubes, comparisons):
                 ax.plot(xi, v, "o", ms=4.5, mfc="white" if flagged else color, mec=color, alpha=0.9)
             st = stat(s, key)
             m, sd = finite(st.get("mean")) * scale, finite(st.get("std")) * scale
-            ax.errorbar([k + 0.36], [m], yerr=[sd], fmt="s", color="black", ms=6, capsize=5, lw=1.6)
+            # One cube has no standard deviation (NaN): the mean alone.
+            ax.errorbar([k + 0.36], [m], yerr=[sd] if math.isfinite(sd) else None, fmt="s", color="black", ms=6, capsize=5, lw=1.6)
         ax.set_xticks(range(len(sands)))
         ax.set_xticklabels([s["name"] for s in sands])
         ax.set_xlim(-0.6, len(sands) - 0.3)

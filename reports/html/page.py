@@ -140,9 +140,9 @@ def fmt(value, digits=4):
         return "–"
     if v == 0:
         return "0"
-    if 10 ** digits <= abs(v) < 1e7:
-        return f"{v:.0f}"  # e.g. a modulus in MPa: 11992, not 1.199×10^4
     text = f"{v:.{digits}g}"
+    if "e" in text and 1 <= abs(v) < 1e7:
+        return f"{v:.0f}"  # e.g. a modulus in MPa: 11992, not 1.199×10⁴
     if "e" in text:
         mantissa, exponent = text.split("e")
         return f"{mantissa}×10{str(int(exponent)).translate(SUPERSCRIPT)}"

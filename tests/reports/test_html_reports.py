@@ -198,6 +198,16 @@ def case_failures(args, browser, work):
     lab = make_lab(args, work)
     check(leftovers(lab) == ["report.html"], f"unexpected files: {leftovers(lab)}")
 
+    # Edge input: one export file (no sieve analysis, no standard deviation, not representative):
+    # the report is still made, with all its figures and without the banner.
+    files = os.path.join(work, "lab-files")
+    r = run([args.gradem, "lab", os.path.join(args.source, "tests/lab_data/fixtures/plain.csv"), "--out", files])
+    page = os.path.join(files, "report.html")
+    check(r.returncode == 0 and os.path.isfile(page), f"no report for a single export file: {r.stderr[-600:]}")
+    text = open(page, encoding="utf-8").read()
+    check(text.count("<svg") == EXPECTED_FIGURES["lab"], f"{page}: {text.count('<svg')} figures")
+    check("REPRESENTATIVE DATA" not in text, f"{page}: banner on data that are not representative")
+
     # No python3: the command still succeeds with its other outputs, warns, and removes the
     # stale report of the earlier run (it no longer belongs to the files next to it).
     r = run([args.gradem, "lab", os.path.join(args.source, "lab_data/datasets/study"), "--out", lab],
