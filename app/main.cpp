@@ -1,5 +1,6 @@
 // gradem: command-line entry point. Dispatches to the subcommands; every error ends with a
-// message on stderr and a non-zero exit code (2 usage or input, 3 a diverged simulation).
+// message on stderr and a non-zero exit code (2 usage or input, 3 a diverged simulation; 5 gradem
+// report could not make the report).
 #include <cstdio>
 #include <iostream>
 #include <string>

@@ -20,7 +20,7 @@ int run_report(const std::vector<std::string>& args) {
     if (!kind) throw UsageError("report kind '" + args[0] + "': expected lab, compress or calibrate");
     const report::HtmlReportOutcome o = report::write_html_report(*kind, args[1]);
     if (o.written()) {
-        std::cout << "report: " << o.path.string() << "\n";
+        std::cout << "report: " << o.path.lexically_normal().string() << "\n";
         return 0;
     }
     std::cerr << "gradem report: " << o.problem << "\n";

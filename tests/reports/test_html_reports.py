@@ -234,6 +234,16 @@ def case_failures(args, browser, work):
           f"no clear message without matplotlib: {r.stderr[-500:]}")
     check(leftovers(lab) == [], f"report files left without matplotlib: {leftovers(lab)}")
 
+    # A generator killed half-way through writing: the half-written page is not left behind.
+    killed = os.path.join(work, "python-killed-midway")
+    with open(killed, "w") as f:
+        f.write('#!/bin/sh\n# args: -B -E -s make_report.py KIND OUT_DIR TEMP\nprintf "<!DOCTYPE html><html><body>half" > "$7"\n'
+                'kill -9 $$\n')
+    os.chmod(killed, 0o755)
+    r = run([args.gradem, "report", "lab", lab], env={"GRADEM_PYTHON": killed})
+    check(r.returncode == 5 and "exit 137" in r.stderr, f"killed generator: exit {r.returncode}: {r.stderr[-400:]}")
+    check(leftovers(lab) == [], f"a half-written report was left: {leftovers(lab)}")
+
     # Bad input: a missing file and a garbled number are named (file, line), exit 2, no report.
     r = run([args.gradem, "report", "calibrate", lab])
     check(r.returncode == 2 and "summary.json: no such file" in r.stderr, f"missing summary.json: {r.returncode} {r.stderr[-400:]}")
