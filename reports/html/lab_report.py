@@ -64,7 +64,8 @@ def build(out_dir):
                    caption="ASTM C109 permissible range of cubes of one batch (highlighted: exceeded).", text_columns=(0, 1, 2, 6),
                    bad_rows=bad)
     page.section("All cubes")
-    page.table(*cubes_table(cubes), caption="One row per cube (flags: what the reduction noticed).", text_columns=(0, 1, 2, 9))
+    page.table(*cubes_table(cubes), caption="One row per cube (flags: what the reduction noticed; highlighted: flagged).",
+               text_columns=(0, 1, 2, 9), bad_rows=[i for i, c in enumerate(cubes) if c.get("flags")])
     definitions = lab.get("definitions") or {}
     if definitions:
         page.section("Definitions")
@@ -285,7 +286,9 @@ def statistics_table(sands):
 
 def comparisons_table(comparisons):
     headers = ["quantity", "sand a", "sand b", "n a", "n b", "mean difference", "Welch t", "dof", "p", "Hedges g"]
-    rows = [[c.get("quantity"), c.get("sand_a"), c.get("sand_b"), c.get("n_a"), c.get("n_b"), fmt(c.get("mean_difference"), 4),
+    names = {"peak_stress_mpa": "peak stress [MPa]", "strain_at_peak": "strain at peak [-]",
+             "chord_modulus_mpa": "chord modulus [MPa]", "tangent_modulus_mpa": "tangent modulus [MPa]"}
+    rows = [[names.get(c.get("quantity"), c.get("quantity")), c.get("sand_a"), c.get("sand_b"), c.get("n_a"), c.get("n_b"), fmt(c.get("mean_difference"), 4),
              fmt(c.get("welch_t"), 3), fmt(c.get("dof"), 3), "< 0.0001" if finite(c.get("p_value")) < 1e-4 else fmt(c.get("p_value"), 2),
              fmt(c.get("hedges_g"), 3)] for c in comparisons]
     return headers, rows
@@ -297,7 +300,7 @@ def c109_table(sands):
         for r in s.get("c109_range_checks") or []:
             if not r.get("ok"):
                 bad.append(len(rows))
-            verdict = "within" if r.get("ok") else f"exceeded: discard {r.get('discarded') or '?'}"
+            verdict = "within" if r.get("ok") else f"exceeded: discard {os.path.basename(r.get('discarded') or '?')}"
             if r.get("retest_required"):
                 verdict += "; retest required"
             rows.append([s["name"], r.get("batch", ""), ", ".join(os.path.basename(f) for f in r.get("files") or []),

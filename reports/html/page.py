@@ -31,8 +31,8 @@ figure.report-figure svg { display: block; width: 100%; max-width: 100%; height:
 figcaption { color: var(--ink); font-size: 14px; margin: 6px 6px 2px; }
 figcaption b { color: var(--accent); }
 table { border-collapse: collapse; margin: 8px 0 6px; font-size: 13.5px; }
-th, td { border-bottom: 1px solid var(--line); padding: 4px 10px; text-align: right; vertical-align: top; }
-th { background: var(--card); font-weight: bold; }
+th, td { border-bottom: 1px solid var(--line); padding: 4px 10px; text-align: right; vertical-align: top; white-space: nowrap; }
+th { background: var(--card); font-weight: bold; white-space: normal; }
 td.text, th.text { text-align: left; }
 tr.bad td { background: #fdecea; }
 p.tablecaption { color: var(--muted); font-size: 13px; margin: 2px 0 14px; }
