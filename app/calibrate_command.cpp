@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "calibrate/calibration.hpp"
 #include "calibrate/report.hpp"
 #include "reports/clock_text.hpp"
+#include "reports/html_report.hpp"
 
 namespace gradem::app {
 namespace {
@@ -73,6 +75,7 @@ int run_calibrate(const std::vector<std::string>& args) {
     cal::write_calibration_outputs(problem, result);
     std::printf("%s\n", cal::brief_report(problem, result).c_str());
     std::printf("results in %s\n", problem.out_dir.c_str());
+    report::write_html_report_or_warn(report::ReportKind::calibrate, problem.out_dir, std::cout);
     bool any_ok = false;
     for (const auto& st : result.stages) any_ok = any_ok || (!st.solution.best.empty() && !st.solution.best_eval.failed);
     return any_ok ? 0 : 4;

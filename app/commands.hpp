@@ -2,6 +2,8 @@
 // The subcommands of the `gradem` executable. Each takes the arguments after its name and
 // returns the process exit code; bad usage throws UsageError (exit 2).
 #include <cstdint>
+#include <filesystem>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -21,5 +23,8 @@ int run_specimen(const std::vector<std::string>& args);
 int run_compress(const std::vector<std::string>& args);
 int run_calibrate(const std::vector<std::string>& args);
 int run_study(const std::vector<std::string>& args);
+int run_report(const std::vector<std::string>& args);
+/// `gradem lab`'s report.html, called by the lab command once its outputs are written.
+void write_lab_report(const std::filesystem::path& out_dir, std::ostream& announce);
 
 }  // namespace gradem::app

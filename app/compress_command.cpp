@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "experiments/cube_test.hpp"
 #include "experiments/packing_cache.hpp"
 #include "reports/clock_text.hpp"
+#include "reports/html_report.hpp"
 
 namespace gradem::app {
 namespace {
@@ -153,6 +155,7 @@ int run_compress(const std::vector<std::string>& args) {
     }
     exp::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check);
     print_summary(result, check, config.out_dir.string());
+    report::write_html_report_or_warn(report::ReportKind::compress, config.out_dir, std::cout);
     if (result.diverged() || half_diverged) {
         std::fprintf(stderr, "gradem: the simulation diverged: %s\n",
                      (result.diverged() ? result.test.stop_reason : check->stop_reason_half).c_str());

@@ -1,5 +1,6 @@
 // gradem: command-line entry point. Dispatches to the subcommands; every error ends with a
-// message on stderr and a non-zero exit code (2 usage or input, 3 a diverged simulation).
+// message on stderr and a non-zero exit code (2 usage or input, 3 a diverged simulation; 5 gradem
+// report could not make the report).
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -23,6 +24,8 @@ constexpr const char* kUsage =
     "                                          cube test of a config: load curve, cracks, macro.json\n"
     "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
+    "  report <lab|compress|calibrate> <folder>\n"
+    "                                          (re)make report.html from a command's outputs\n"
     "  study <study.toml> [--out DIR] [--workers N]\n"
     "                                          parameter study (gradation_effect, resolution, ...)\n"
     "  --help, --version                       (gradem <command> --help: that command's options)\n";
@@ -61,11 +64,12 @@ int main(int argc, char** argv) {
     }
     const std::vector<std::string> rest(all.begin() + 1, all.end());
     try {
-        if (all[0] == "lab") return gradem::lab::run_lab_command(rest);
+        if (all[0] == "lab") return gradem::lab::run_lab_command(rest, gradem::app::write_lab_report);
         if (all[0] == "quick-cube") return gradem::app::run_quick_cube(rest);
         if (all[0] == "specimen") return gradem::app::run_specimen(rest);
         if (all[0] == "compress") return gradem::app::run_compress(rest);
         if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
+        if (all[0] == "report") return gradem::app::run_report(rest);
         if (all[0] == "study") return gradem::app::run_study(rest);
         std::cerr << "gradem: unknown command '" << all[0] << "'\n" << kUsage;
         return 2;

@@ -132,8 +132,9 @@ Reads lab data and reduces it to the statistics calibration uses.
       the format is detected from the content): each file is reduced.
 
 options:
-  --out DIR           write lab_results.json, cubes.csv, sand_stats.csv, gradation.csv and
-                      comparisons.csv into DIR (default: ./lab_out); written atomically
+  --out DIR           write lab_results.json, cubes.csv, sand_stats.csv, gradation.csv,
+                      comparisons.csv and curves.csv into DIR (default: ./lab_out), written
+                      atomically; then report.html (figures) when run by gradem
   --no-write          write no files
   --json              print lab_results.json to stdout instead of the tables
   --cubes             also print one row per cube
@@ -150,7 +151,7 @@ exit status: 0 success, 1 bad input (message "file:line: what was expected"), 2 
 )";
 }
 
-int run_lab_command(const std::vector<std::string>& args) {
+int run_lab_command(const std::vector<std::string>& args, const AfterLabOutputs& after_outputs) {
     for (const auto& a : args)
         if (a == "-h" || a == "--help") {
             std::cout << lab_command_usage();
@@ -163,6 +164,7 @@ int run_lab_command(const std::vector<std::string>& args) {
         if (c.json) std::cout << lab_stats_to_json(lab).dump(2) << "\n";
         else print_lab_report(std::cout, lab, c.per_cube || lab.source == "files");
         if (c.write && !c.json) std::cout << "\nwrote " << (c.out / "lab_results.json").string() << " and CSV tables\n";
+        if (c.write && after_outputs) after_outputs(c.out, c.json ? std::cerr : std::cout);
         return 0;
     } catch (const UsageError& e) {
         std::cerr << "gradem lab: " << e.what() << "\n(see gradem lab --help)\n";

@@ -20,8 +20,12 @@ std::string cubes_csv(const LabStats& lab);
 std::string sand_stats_csv(const LabStats& lab);
 std::string gradation_csv(const LabStats& lab);
 std::string comparisons_csv(const LabStats& lab);
+/// Each cube's stress-strain curve for plots: every k-th sample (at most kCurvePointsPerCube per
+/// cube) plus the peak sample, so a curve's largest stress is the cube's peak stress.
+inline constexpr std::size_t kCurvePointsPerCube = 200;
+std::string curves_csv(const LabStats& lab);
 
-/// Writes lab_results.json, cubes.csv, sand_stats.csv, gradation.csv, comparisons.csv into
+/// Writes lab_results.json, cubes.csv, sand_stats.csv, gradation.csv, comparisons.csv, curves.csv into
 /// `dir` (created if needed). Each file is written to a temporary name first and renamed only
 /// once all are complete, so a failure leaves no partial result behind.
 void write_lab_outputs(const std::filesystem::path& dir, const LabStats& lab);

@@ -1,5 +1,6 @@
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -234,6 +235,20 @@ std::string comparisons_csv(const LabStats& lab) {
     return o.str();
 }
 
+std::string curves_csv(const LabStats& lab) {
+    std::ostringstream o;
+    o << banner(lab) << "file,sand,batch,strain,stress_mpa\n";
+    for (const auto& c : lab.cubes) {
+        const std::size_t n = std::min(c.curve.strain.size(), c.curve.stress_pa.size());
+        const std::size_t stride = (n + kCurvePointsPerCube - 2) / (kCurvePointsPerCube - 1);  // room for the peak
+        for (std::size_t i = 0; i < n; ++i)
+            if (i % std::max<std::size_t>(stride, 1) == 0 || i == c.reduction.peak_index)
+                o << csv_text(c.file) << ',' << csv_text(c.sand) << ',' << csv_text(c.batch) << ',' << g(c.curve.strain[i]) << ','
+                  << g(c.curve.stress_pa[i] / 1e6) << '\n';
+    }
+    return o.str();
+}
+
 void write_lab_outputs(const fs::path& dir, const LabStats& lab) {
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -242,7 +257,8 @@ void write_lab_outputs(const fs::path& dir, const LabStats& lab) {
                       {dir / "cubes.csv", cubes_csv(lab)},
                       {dir / "sand_stats.csv", sand_stats_csv(lab)},
                       {dir / "gradation.csv", gradation_csv(lab)},
-                      {dir / "comparisons.csv", comparisons_csv(lab)}});
+                      {dir / "comparisons.csv", comparisons_csv(lab)},
+                      {dir / "curves.csv", curves_csv(lab)}});
 }
 
 void print_lab_report(std::ostream& out, const LabStats& lab, bool per_cube) {

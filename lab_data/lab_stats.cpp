@@ -88,7 +88,8 @@ CubeResult reduce_cube_file(const fs::path& path, const std::string& display_nam
     cube.columns = test.columns;
     cube.representative = test.representative || config.representative;
     cube.notes = test.notes;
-    cube.reduction = reduce_curve(to_stress_strain(test), config.reduction);
+    cube.curve = to_stress_strain(test);
+    cube.reduction = reduce_curve(cube.curve, config.reduction);
     const auto& r = cube.reduction;
     if (r.status != ReductionStatus::ok) {
         const int line = r.problem_index < test.line.size() ? test.line[r.problem_index] : 0;

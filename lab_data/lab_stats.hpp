@@ -30,6 +30,7 @@ struct CubeResult {
     std::map<std::string, std::string> columns;  ///< role -> column used
     bool representative = false;                 ///< the dataset or the file says the data are representative
     CurveReduction reduction;
+    StressStrainCurve curve;                     ///< the curve as read (SI, compression positive); for plots (curves.csv)
     double load_rate_n_per_s = 0;                ///< mean between 10 % and 50 % of peak; NaN without time
     std::vector<std::string> flags;              ///< e.g. "c109_range_discarded", "load_rate_outside_c109"
     std::vector<std::string> notes;              ///< what the reader did (sign flips, decoding, ...)

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libnlopt-cxx-dev libnlopt-dev libceres-dev libfccp-dev catch2
   libtomlplusplus-dev nlohmann-json3-dev libsqlite3-dev libcli11-dev
   clang
+  python3-matplotlib chromium fonts-dejavu-core
 )
 
 missing=()

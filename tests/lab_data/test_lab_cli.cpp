@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "lab_data/lab_command.hpp"
+#include "lab_data/lab_output.hpp"
 #include "lab_data/lab_stats.hpp"
 #include "lab_data/text.hpp"
 
@@ -100,9 +101,54 @@ TEST_CASE("lab: on the study dataset: JSON contract and the generating law recov
     }
     for (const auto& c : j["comparisons"])
         if (c["quantity"] == "peak_stress_mpa") CHECK(c["p_value"].get<double>() < 0.05);
-    for (const char* f : {"lab_results.json", "cubes.csv", "sand_stats.csv", "gradation.csv", "comparisons.csv"})
+    for (const char* f : {"lab_results.json", "cubes.csv", "sand_stats.csv", "gradation.csv", "comparisons.csv", "curves.csv"})
         CHECK(fs::exists(out / f));
     fs::remove_all(out);
+}
+
+TEST_CASE("lab: curves.csv holds every cube's curve, thinned, with its peak; the app hook sees the folder", "[lab][cli]") {
+    const fs::path out = scratch("curves");
+    std::vector<fs::path> hooked;
+    std::ostringstream sink;
+    auto* old_out = std::cout.rdbuf(sink.rdbuf());
+    const int status = run_lab_command({kStudy, "--out", out.string()},
+                                       [&](const fs::path& dir, std::ostream&) { hooked.push_back(dir); });
+    std::cout.rdbuf(old_out);
+    REQUIRE(status == 0);
+    CHECK(hooked == std::vector<fs::path>{out});
+
+    const auto j = nlohmann::json::parse(std::ifstream(out / "lab_results.json"));
+    std::map<std::string, std::pair<std::size_t, double>> curves;  // file -> (samples, largest stress [MPa])
+    std::ifstream in(out / "curves.csv");
+    std::string line;
+    bool header = false;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (!header) {
+            CHECK(line == "file,sand,batch,strain,stress_mpa");
+            header = true;
+            continue;
+        }
+        const auto cells = split_cells(line, ',').cells;
+        REQUIRE(cells.size() == 5);
+        auto& [samples, peak] = curves[cells[0].text];
+        ++samples;
+        peak = std::max(peak, std::stod(cells[4].text));
+    }
+    REQUIRE(curves.size() == j["cubes"].size());
+    for (const auto& c : j["cubes"]) {
+        const auto& [samples, peak] = curves.at(c["file"].get<std::string>());
+        CHECK(samples > 50);
+        CHECK(samples <= kCurvePointsPerCube);
+        CHECK(peak == Approx(c["peak_stress_mpa"].get<double>()).epsilon(1e-7));  // the peak sample is kept
+    }
+    fs::remove_all(out);
+
+    hooked.clear();
+    auto* old_out2 = std::cout.rdbuf(sink.rdbuf());
+    run_lab_command({kStudy, "--no-write"}, [&](const fs::path& dir, std::ostream&) { hooked.push_back(dir); });
+    std::cout.rdbuf(old_out2);
+    CHECK(hooked.empty());
 }
 
 TEST_CASE("lab: prints Table 2 and Table 4 and marks representative data", "[lab][cli]") {
