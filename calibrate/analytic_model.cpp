@@ -27,14 +27,12 @@ struct SandCoefficients {
 constexpr SandCoefficients kSands[] = {{0.90, 1.80, 0.35, 0.90, 1.20, 0.05, 0.25}, {0.75, 1.60, 0.25, 0.60, 0.80, 0.15, 0.12},
                                        {0.82, 1.70, 0.30, 0.75, 1.00, 0.10, 0.18}};
 
-/// The bond law's extra ductility in D (see the header).
+/// The bond law's extra ductility in D (see the header); none for the parallel bond (and for a
+/// law the stand-in does not know).
 double law_ductility(const BondParams& b, double h) {
-    switch (b.model) {
-        case BondModel::soft_bond:
-            return h * std::log(1.0 + (1.0 - b.soft.cut_fraction * b.soft.cut_fraction) / b.soft.softening_factor);
-        case BondModel::flat_joint: return 0.5 * h * b.flat.residual_friction;
-        case BondModel::parallel_bond: break;
-    }
+    if (b.model == BondModel::soft_bond)
+        return h * std::log(1.0 + (1.0 - b.soft.cut_fraction * b.soft.cut_fraction) / b.soft.softening_factor);
+    if (b.model == BondModel::flat_joint) return 0.5 * h * b.flat.residual_friction;
     return 0.0;
 }
 

@@ -87,7 +87,7 @@ BondModel read_bond_model(Section& s, Context& ctx) {
                      "key 'material." + std::string(p.key) + "' belongs to bond model " + model_names(p.models) +
                          ", but material.model = \"" + bond_model_name(model) + "\"" +
                          (model_line > 0 ? " (line " + std::to_string(model_line) + ")" : " (the default)") +
-                         ": set model = \"" + bond_model_name(kBondModels[std::countr_zero(p.models)]) + "\" or remove the key");
+                         ": set model = \"" + bond_model_name(bond_models().at(std::countr_zero(p.models))) + "\" or remove the key");
 }
 
 // One row of the material table: its key in config units, converted to SI once.

@@ -293,9 +293,22 @@ std::optional<std::string> material_range_violation(const MaterialParams& m) {
     return std::nullopt;
 }
 
+const std::vector<BondModel>& bond_models() {
+    static const std::vector<BondModel> models = [] {
+        std::vector<BondModel> out;
+        for (unsigned k = 0; k < 32; ++k) {
+            const auto m = static_cast<BondModel>(k);
+            if (parse_bond_model(bond_model_name(m)) != m) break;  // past the last law core names
+            out.push_back(m);
+        }
+        return out;
+    }();
+    return models;
+}
+
 std::string model_names(ModelSet models) {
     std::string out;
-    for (BondModel b : kBondModels)
+    for (BondModel b : bond_models())
         if (models & model_bit(b)) out += (out.empty() ? "" : ", ") + std::string(bond_model_name(b));
     return out;
 }

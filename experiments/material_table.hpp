@@ -21,6 +21,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/params.hpp"
 
@@ -35,10 +36,10 @@ enum class ParameterRole : std::uint8_t { stiffness_scale, strength_scale, shape
 /// The bond models a row applies to (a bit set over BondModel).
 using ModelSet = std::uint32_t;
 constexpr ModelSet model_bit(BondModel m) { return ModelSet{1} << static_cast<unsigned>(m); }
-constexpr ModelSet kEveryModel = model_bit(BondModel::parallel_bond) | model_bit(BondModel::soft_bond) |
-                                 model_bit(BondModel::flat_joint);
-/// Every BondModel, in enum order (for messages and loops).
-inline constexpr BondModel kBondModels[] = {BondModel::parallel_bond, BondModel::soft_bond, BondModel::flat_joint};
+constexpr ModelSet kEveryModel = ~ModelSet{0};  ///< a row every bond model uses
+/// Every BondModel core knows (those bond_model_name() names), in enum order: a new law in
+/// core/params.hpp appears here without an edit.
+const std::vector<BondModel>& bond_models();
 
 /// Allowed values in config units: lower/upper bounds (infinite = none), each open or closed.
 struct Range {

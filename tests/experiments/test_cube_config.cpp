@@ -352,7 +352,7 @@ TEST_CASE("material table: one row per key, defaults in range, ranges agree with
         }
         // The struct default of every model's rows is valid.
         MaterialParams m;
-        for (BondModel b : kBondModels) {
+        for (BondModel b : bond_models()) {
             m.bond.model = b;
             CHECK_FALSE(m.invalid_reason().has_value());
         }
