@@ -3,6 +3,8 @@
 
 #include <cstdio>
 
+#include "experiments/material_table.hpp"
+
 namespace gradem::cal {
 
 const char* to_string(RunStatus s) {
@@ -33,7 +35,19 @@ std::string material_key(const exp::MaterialParams& m) {
                   b.radius_multiplier, b.moment_factor, b.tensile_strength_mean, b.tensile_strength_std, b.cohesion_mean,
                   b.cohesion_std, b.friction_angle_deg, static_cast<unsigned long long>(b.seed), m.bond_gap_fraction,
                   m.bond_gap_absolute, m.platen_friction, m.damping);
-    return buf;
+    // Another bond law than the parallel bond: its name and every table row of its own, so a
+    // parallel-bond run is never served for another model (parallel-bond keys are unchanged).
+    std::string key = buf;
+    if (b.model == BondModel::parallel_bond) return key;
+    key += std::string(" model=") + bond_model_name(b.model);
+    for (const exp::MaterialParameter& p : exp::material_table()) {
+        if (!p.in_config || !p.applies_to(b.model) || p.applies_to(BondModel::parallel_bond)) continue;
+        if (p.integer) std::snprintf(buf, sizeof buf, " %.*s=%lld", static_cast<int>(p.key.size()), p.key.data(),
+                                     static_cast<long long>(p.get_int(m)));
+        else std::snprintf(buf, sizeof buf, " %.*s=%a", static_cast<int>(p.key.size()), p.key.data(), p.get(m));
+        key += buf;
+    }
+    return key;
 }
 
 std::string fnv1a_hex(const std::string& text) {

@@ -6,19 +6,13 @@
 // and in "natural" coordinates z for uncertainty (z = ln v for log, z = v for linear), so that a
 // standard error in z is relative for log parameters and absolute for linear ones.
 //
-// Names, units and what they set (config units; SI inside MaterialParams):
-//   effective_modulus_gpa  E* of contacts and Ē* of bonds (one value)      stiffness scale
-//   tensile_strength_mpa   mean bond tensile strength σ̄c                  strength scale
-//   cohesion_ratio         c̄ / σ̄c                                          shape
-//   cohesion_mpa           mean bond cohesion c̄ (instead of cohesion_ratio) strength scale
-//   strength_cv            coefficient of variation of σ̄c and c̄           shape
-//   stiffness_ratio        κ* = κ̄ = kn/ks of contacts and bonds           shape
-//   friction               grain friction μ                               shape
-//   radius_multiplier      λ̄                                               shape
-//   moment_factor          β̄                                               shape
-//   friction_angle_deg     φ̄                                               shape
-//   bond_gap_um            installation gap, the same for every sand      shape
-//   bond_gap_fraction      installation gap / mean grain radius           shape
+// The names, units, roles, default bounds and scales, and how a value is applied, are the
+// material table's (experiments/material_table.hpp): every row with a calibration column.
+// Names (and the order they are applied in): effective_modulus_gpa (E* and Ē* together),
+// stiffness_ratio (κ* and κ̄ together), friction, radius_multiplier, moment_factor,
+// friction_angle_deg, bond_gap_um, bond_gap_fraction, tensile_strength_mpa (c̄ keeps its ratio),
+// cohesion_ratio, cohesion_mpa, strength_cv, and each bond model's own (softening_factor,
+// cut_fraction; radial_elements, angular_elements (fixed only), residual_friction).
 // "Scale" parameters are those the model's homogeneity (calibration.md §1) acts on: multiplying
 // all moduli by a scales E by a; multiplying all strengths by b scales the peak by b.
 #include <optional>
@@ -26,10 +20,12 @@
 #include <vector>
 
 #include "experiments/cube_test.hpp"
+#include "experiments/material_table.hpp"
 
 namespace gradem::cal {
 
-enum class Role { stiffness_scale, strength_scale, shape };
+/// The homogeneity role of a parameter (the material table's column).
+using Role = exp::ParameterRole;
 
 struct ParameterSpec {
     std::string name;

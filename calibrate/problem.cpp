@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "experiments/material_table.hpp"
 #include "experiments/toml_section.hpp"
 #include "lab_data/input_error.hpp"
 
@@ -80,6 +81,8 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     p.sands = read_strings(s, "sands", {"pre-blended", "Van Buren"});
     s.text("calibrate_on", p.calibrate_on);
     p.seeds = read_seeds(s, "seeds", p.seeds);
+    std::string bond_model;
+    s.text("bond_model", bond_model);
     s.finish();
     p.mode = parse_mode(mode, ctx);
     if (p.model != "dem" && p.model != "analytic")
@@ -89,6 +92,14 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     if (!fs::exists(base))
         throw InputError(ctx.file, ctx.keys["calibration.base"].line, "key 'calibration.base': file " + base.string() + " not found");
     p.base = exp::load_cube_config(base);
+    if (!bond_model.empty()) {  // overrides the base config's [material] model
+        const auto model = parse_bond_model(bond_model);
+        if (!model)
+            throw InputError(ctx.file, ctx.keys["calibration.bond_model"].line,
+                             "key 'calibration.bond_model' = \"" + bond_model + "\": unknown bond model (known: " +
+                                 exp::bond_model_names() + ")");
+        p.base.material.bond.model = *model;
+    }
     if (p.sands.empty()) throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' is empty");
     const std::set<std::string> unique(p.sands.begin(), p.sands.end());
     if (unique.size() != p.sands.size())
@@ -101,6 +112,34 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
         if (p.sands.size() < 2)
             throw InputError(ctx.file, ctx.keys["calibration.mode"].line, "mode \"study\" needs a second sand to predict");
     }
+}
+
+// Where the problem's bond model comes from, for messages.
+std::string bond_model_origin(Context& ctx) {
+    const int line = ctx.keys["calibration.bond_model"].line;
+    return line > 0 ? "calibration.bond_model (line " + std::to_string(line) + ")" : "the base config's material.model";
+}
+
+// A parameter of another bond model than the problem's is an error naming the model it belongs to.
+void check_model_of(Context& ctx, const exp::MaterialParameter& row, BondModel model, int line) {
+    if (row.applies_to(model)) return;
+    throw InputError(ctx.file, line,
+                     "parameter '" + std::string(row.key) + "' belongs to bond model " + exp::model_names(row.models) +
+                         ", but this problem's bond model is " + bond_model_name(model) + " (from " + bond_model_origin(ctx) +
+                         "): set calibration.bond_model or remove [parameters." + std::string(row.key) + "]");
+}
+
+// Integer parameters (element counts) are never free, and their value is a whole number.
+void check_integer(Context& ctx, const exp::MaterialParameter& row, const ParameterSpec& spec) {
+    if (row.calibration != exp::Calibration::fixed_only) return;
+    const std::string where = "parameters." + spec.name;
+    if (spec.free)
+        throw InputError(ctx.file, ctx.keys[spec.name + ".free"].line,
+                         "key '" + where + ".free' = true: " + spec.name + " is an integer (" + std::string(row.description) +
+                             ") and cannot be calibrated; set free = false and start = the count");
+    if (spec.start != std::round(spec.start))
+        throw InputError(ctx.file, ctx.keys[spec.name + ".start"].line,
+                         "key '" + where + ".start' = " + show(spec.start) + ": " + spec.name + " is an integer (an element count)");
 }
 
 void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& p) {
@@ -119,6 +158,7 @@ void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& 
                 throw InputError(ctx.file, line_of(node), "unknown parameter '" + name + "' (known: " + known + ")");
             }
             if (!node.is_table()) throw InputError(ctx.file, line_of(node), "'parameters." + name + "' must be a table");
+            check_model_of(ctx, *exp::find_material_parameter(name), p.base.material.bond.model, line_of(node));
             ParameterSpec spec = specs.count(name) ? specs[name] : default_parameter(name, p.base.material);
             Section s(ctx, *n->as_table(), name);
             s.boolean("free", spec.free);
@@ -137,6 +177,7 @@ void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& 
                 throw InputError(ctx.file, spec.line, "[" + where + "] lower = " + show(spec.lower) + " must be < upper = " + show(spec.upper));
             if (spec.log_scale && !(spec.lower > 0.0))
                 throw InputError(ctx.file, spec.line, "[" + where + "] scale = \"log\" needs lower > 0 (got " + show(spec.lower) + ")");
+            check_integer(ctx, *exp::find_material_parameter(name), spec);
             if (spec.free && !(spec.start >= spec.lower && spec.start <= spec.upper))
                 throw InputError(ctx.file, spec.line, "[" + where + "] start = " + show(spec.start) + " is outside [lower, upper] = [" +
                                                           show(spec.lower) + ", " + show(spec.upper) + "]");

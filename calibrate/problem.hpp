@@ -2,7 +2,8 @@
 // A calibration problem, read from a TOML file (calibrate/README.md documents every key):
 //
 //   [calibration] base (a cube config: specimen size rule, genesis, start material, test),
-//                 mode = "joint" | "per_sand" | "study", sands, calibrate_on, seeds, model
+//                 mode = "joint" | "per_sand" | "study", sands, calibrate_on, seeds, model,
+//                 bond_model (overrides the base's [material] model; kept in base.material)
 //   [targets]     lab_results (the lab_results.json of `gradem lab`), modulus/peak/strain weights
 //   [parameters.<name>]  free, start, lower, upper, scale = "log" | "linear"
 //   [solver]      method, max_runs, tolerance, fd_step, homogeneity_tolerance, penalty, seed
@@ -77,6 +78,9 @@ struct CalibrationProblem {
     int workers = 2;
     double timeout_s = 600.0;
     std::filesystem::path out_dir, ledger;
+
+    /// The bond law every run uses ([calibration] bond_model, or the base's [material] model).
+    [[nodiscard]] BondModel bond_model() const { return base.material.bond.model; }
 
     /// Canonical text of everything that defines the problem's answer (not budget, workers
     /// or paths); its hash is the ledger's problem fingerprint.

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "calibrate/objective.hpp"
+#include "experiments/material_table.hpp"
 #include "reports/atomic_file.hpp"
 #include "reports/clock_text.hpp"
 
@@ -68,6 +69,43 @@ std::vector<TargetRow> target_rows(const CalibrationProblem& p, const Calibratio
     return rows;
 }
 
+/// E ε / σ: the shape index the homogeneity leaves to the shape parameters.
+double shape_index(double e, double sigma, double eps) { return e * eps / sigma; }
+
+/// D = E·ε_peak/σ_peak of a sand: the lab's (from its means) and the simulated one (seed means
+/// at the calibrated parameters; NaN if the sand has no successful run).
+struct ShapeIndexRow {
+    std::string sand, role;
+    double lab = 0.0, sim = 0.0;
+};
+
+std::vector<ShapeIndexRow> shape_index_rows(const CalibrationProblem& p, const CalibrationStage& st) {
+    std::vector<ShapeIndexRow> rows;
+    auto add = [&](std::size_t s, const char* role) {
+        const SandTargets& t = p.targets[s];
+        const SandOutcome* o = st.outcome(s);
+        rows.push_back({p.sands[s], role, shape_index(t.modulus.mean, t.peak.mean, t.strain.mean),
+                        o && o->ok > 0 ? shape_index(o->value(Quantity::modulus), o->value(Quantity::peak), o->value(Quantity::strain))
+                                       : std::nan("")});
+    };
+    for (std::size_t s : st.fitted) add(s, "fitted");
+    for (std::size_t s : st.predicted) add(s, "predicted");
+    return rows;
+}
+
+/// The bond model's own parameters (the table rows it does not share with the parallel bond)
+/// in the material of the first stage's best point (or the start), config units.
+json bond_model_parameters(const CalibrationProblem& p, const CalibrationResult& r) {
+    const ParameterSpace space(p.parameters, p.base.material);
+    const bool solved = !r.stages.empty() && !r.stages[0].solution.best.empty();
+    const exp::MaterialParams m = space.material(solved ? r.stages[0].solution.best : space.start());
+    json out = json::object();
+    for (const exp::MaterialParameter& row : exp::material_table())
+        if (row.in_config && row.applies_to(p.bond_model()) && !row.applies_to(BondModel::parallel_bond))
+            out[std::string(row.key)] = row.integer ? json(row.get_int(m)) : json(exp::config_value(row, m));
+    return out;
+}
+
 json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
     const ParameterSpace space(p.parameters, p.base.material);
     json out = json::array();
@@ -94,9 +132,6 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
     return out;
 }
 
-/// E ε / σ: the shape index the homogeneity leaves to the shape parameters.
-double shape_index(double e, double sigma, double eps) { return e * eps / sigma; }
-
 std::vector<std::string> unmet_statements(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<std::string> out;
     for (const TargetRow& r : target_rows(p, st)) {
@@ -111,11 +146,14 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
             if (so) {
                 const double d_sim = shape_index(so->value(Quantity::modulus), so->value(Quantity::peak), so->value(Quantity::strain));
                 const double d_lab = shape_index(t.modulus.mean, t.peak.mean, t.strain.mean);
+                const bool brittle = p.bond_model() == BondModel::parallel_bond;
                 s << ". The model cannot meet it: its shape index D = E·ε/σ is " << fmt(d_sim, 3) << " against the lab's "
-                  << fmt(d_lab, 3) << " - bonded-particle specimens are near-linear (brittle) to the peak, so with E and "
-                                      "peak matched the strain at peak is D_sim/D_lab = "
-                  << pct(d_sim / d_lab - 1.0) << " off; this is the best compromise the weights allow (model-form error, "
-                                                 "not an optimiser failure)";
+                  << fmt(d_lab, 3)
+                  << (brittle ? " - bonded-particle specimens are near-linear (brittle) to the peak, so with E and peak matched"
+                              : std::string(" - with the ") + bond_model_name(p.bond_model()) +
+                                    " law's shape parameters found and E and peak matched,")
+                  << " the strain at peak is D_sim/D_lab = " << pct(d_sim / d_lab - 1.0)
+                  << " off; this is the best compromise the weights allow (model-form error, not an optimiser failure)";
             }
         } else if (r.role == "predicted") {
             s << " - a prediction, not a fit";
@@ -151,6 +189,11 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
                                    {"difference_runs", u.fd_runs}}},
               {"notes", s.notes},
               {"unmet_targets", unmet_statements(p, st)}};
+    json d = json::array();
+    for (const ShapeIndexRow& row : shape_index_rows(p, st))
+        d.push_back({{"sand", row.sand}, {"role", row.role}, {"lab", number(row.lab)}, {"simulated", number(row.sim)},
+                     {"rel_error", number(row.sim / row.lab - 1.0)}});
+    j["shape_index_d"] = d;
     if (s.homogeneity.done)
         j["homogeneity"] = {{"holds", s.homogeneity.holds}, {"alpha", s.homogeneity.alpha}, {"beta", s.homogeneity.beta},
                             {"modulus_deviation", s.homogeneity.modulus_deviation}, {"peak_deviation", s.homogeneity.peak_deviation},
@@ -162,18 +205,24 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
 }  // namespace
 
 json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
-    json stages = json::array(), all_targets = json::array();
+    json stages = json::array(), all_targets = json::array(), all_d = json::array();
     for (const CalibrationStage& st : r.stages) {
         stages.push_back(stage_json(p, st));
         for (auto t : stages.back()["targets"]) {
             t["stage"] = st.label;
             all_targets.push_back(t);
         }
+        for (auto d : stages.back()["shape_index_d"]) {
+            d["stage"] = st.label;
+            all_d.push_back(d);
+        }
     }
     json seeds = p.seeds;
     return {{"schema", "gradem-calibration/1"},
             {"config", p.file.string()},
             {"model", p.model},
+            {"bond_model", bond_model_name(p.bond_model())},
+            {"bond_model_parameters", bond_model_parameters(p, r)},
             {"mode", to_string(p.mode)},
             {"solver", to_string(p.solver.method)},
             {"sands", p.sands},
@@ -191,6 +240,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"code_version", code_version()},
             {"parameters", stages.empty() ? json::array() : stages[0]["parameters"]},
             {"targets", all_targets},
+            {"shape_index_d", all_d},
             {"stages", stages}};
 }
 
@@ -199,7 +249,15 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
     md << "# gradem calibration: " << p.file.filename().string() << "\n\n";
     if (p.representative)
         md << "> **The lab data are REPRESENTATIVE, not measurements.** " << p.lab_note << "\n\n";
-    md << "- mode **" << to_string(p.mode) << "**, solver **" << to_string(p.solver.method) << "**, model " << p.model << "\n"
+    md << "- mode **" << to_string(p.mode) << "**, solver **" << to_string(p.solver.method) << "**, model " << p.model
+       << ", bond model **" << bond_model_name(p.bond_model()) << "**";
+    std::string sep = " (";
+    const json law = bond_model_parameters(p, r);
+    for (const auto& [key, value] : law.items()) {
+        md << sep << key << " = " << fmt(value.get<double>());
+        sep = ", ";
+    }
+    md << (sep == ", " ? ")" : "") << "\n"
        << "- sands: ";
     for (std::size_t s = 0; s < p.sands.size(); ++s) md << (s ? ", " : "") << p.sands[s];
     md << "; packing seeds per sand: " << p.seeds.size() << " (the same packings for every parameter set)\n"
@@ -239,6 +297,10 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
                << fmt(row.lab.mean * display(row.q)) << " ± " << fmt(row.lab.std * display(row.q), 2) << " | "
                << fmt(row.sim_mean * display(row.q)) << " ± " << fmt(row.sim_std * display(row.q), 2) << " | " << pct(row.rel_error)
                << " | " << fmt(row.z, 2) << " |\n";
+        md << "\n| sand | role | D = E·ε_peak/σ_peak lab | D simulated | rel. error |\n|---|---|---|---|---|\n";
+        for (const ShapeIndexRow& row : shape_index_rows(p, st))
+            md << "| " << row.sand << " | " << row.role << " | " << fmt(row.lab, 3) << " | " << fmt(row.sim, 3) << " | "
+               << pct(row.sim / row.lab - 1.0) << " |\n";
         md << "\nNoise floor (relative standard error of the seed mean): modulus " << pct(st.noise_floor[0]).substr(1)
            << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1) << ".\n\n";
         const Uncertainty& u = st.uncertainty;

@@ -1,6 +1,8 @@
 #include "experiments/cube_config.hpp"
 
+#include <bit>
 #include <limits>
+#include <optional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -8,6 +10,7 @@
 #include <toml++/toml.h>
 #include <vector>
 
+#include "experiments/material_table.hpp"
 #include "experiments/toml_section.hpp"
 #include "lab_data/dataset.hpp"
 #include "lab_data/input_error.hpp"
@@ -68,37 +71,59 @@ void read_genesis(Context& ctx, const toml::table& root, CubeConfig& c) {
     s.finish();
 }
 
-// A coefficient of variation: the struct stores std = cv x mean.
-void read_cv(Section& s, const char* key, double mean, double& std_dev) {
-    double cv = mean > 0.0 ? std_dev / mean : 0.0;
-    s.real(key, cv);
-    std_dev = cv * mean;
+// The bond model: "parallel_bond" (default), "soft_bond" or "flat_joint".
+BondModel read_bond_model(Section& s, Context& ctx) {
+    std::string name = bond_model_name(BondModel::parallel_bond);
+    s.text("model", name);
+    if (const auto model = parse_bond_model(name)) return *model;
+    throw InputError(ctx.file, ctx.keys["material.model"].line,
+                     "key 'material.model' = \"" + name + "\": unknown bond model (known: " + bond_model_names() + ")");
+}
+
+// A key of another bond model than the file's: an error naming the model it belongs to.
+[[noreturn]] void wrong_model(Context& ctx, const toml::node& n, const MaterialParameter& p, BondModel model) {
+    const int model_line = ctx.keys["material.model"].line;
+    throw InputError(ctx.file, line_of(n),
+                     "key 'material." + std::string(p.key) + "' belongs to bond model " + model_names(p.models) +
+                         ", but material.model = \"" + bond_model_name(model) + "\"" +
+                         (model_line > 0 ? " (line " + std::to_string(model_line) + ")" : " (the default)") +
+                         ": set model = \"" + bond_model_name(bond_models().at(std::countr_zero(p.models))) + "\" or remove the key");
+}
+
+// One row of the material table: its key in config units, converted to SI once.
+void read_parameter(Section& s, Context& ctx, const MaterialParameter& p, MaterialParams& m) {
+    const std::string key(p.key);
+    if (!p.applies_to(m.bond.model)) {
+        if (const toml::node* n = s.node(key.c_str())) wrong_model(ctx, *n, p, m.bond.model);
+        return;
+    }
+    if (!p.follows.empty()) p.set(m, find_material_parameter(p.follows)->get(m));  // default: the leader's value
+    if (p.integer) {
+        std::int64_t v = p.get_int(m);
+        s.integer(key.c_str(), v);
+        if (!p.range.contains(static_cast<double>(v)))
+            throw InputError(ctx.file, ctx.keys["material." + key].line,
+                             "key 'material." + key + "' = " + std::to_string(v) + " violates " + p.range.rule());
+        p.set_int(m, v);
+    } else if (!p.cv_of.empty()) {  // the struct stores std = cv x mean
+        double cv = config_value(p, m);
+        s.real(key.c_str(), cv);
+        set_config_value(p, m, cv);
+    } else {
+        double v = p.get(m);
+        s.real(key.c_str(), v, p.to_si);
+        p.set(m, v);
+    }
+    ctx.keys["material." + key].converted = p.to_si != 1.0 || !p.cv_of.empty();
 }
 
 void read_material(Context& ctx, const toml::table& root, CubeConfig& c) {
     Section s(ctx, root, "material");
     MaterialParams& m = c.material;
-    s.real("effective_modulus_gpa", m.contact.effective_modulus, kGpa);
-    s.real("stiffness_ratio", m.contact.stiffness_ratio);
-    s.real("friction", m.contact.friction);
-    m.bond.effective_modulus = m.contact.effective_modulus;  // defaults: the contact's
-    m.bond.stiffness_ratio = m.contact.stiffness_ratio;
-    s.real("bond_modulus_gpa", m.bond.effective_modulus, kGpa);
-    s.real("bond_stiffness_ratio", m.bond.stiffness_ratio);
-    s.real("radius_multiplier", m.bond.radius_multiplier);
-    s.real("moment_factor", m.bond.moment_factor);
-    s.real("tensile_strength_mpa", m.bond.tensile_strength_mean, kMpa);
-    read_cv(s, "tensile_strength_cv", m.bond.tensile_strength_mean, m.bond.tensile_strength_std);
-    s.real("cohesion_mpa", m.bond.cohesion_mean, kMpa);
-    read_cv(s, "cohesion_cv", m.bond.cohesion_mean, m.bond.cohesion_std);
-    s.real("friction_angle_deg", m.bond.friction_angle_deg);
-    s.real("bond_gap_fraction", m.bond_gap_fraction);
-    s.real("bond_gap_um", m.bond_gap_absolute, 1.0e-6);
-    s.real("platen_friction", m.platen_friction);
-    s.real("damping", m.damping);
-    s.integer("bond_seed", m.bond.seed);
+    m.bond.model = read_bond_model(s, ctx);
+    for (const MaterialParameter& p : material_table())
+        if (p.in_config) read_parameter(s, ctx, p, m);
     s.finish();
-    for (const char* k : {"tensile_strength_cv", "cohesion_cv"}) ctx.keys["material." + std::string(k)].converted = true;
     c.test.loading.platen_friction = m.platen_friction;
 }
 
@@ -153,16 +178,6 @@ const FieldMap kFields = {
     {"genesis.min_contacts", "genesis.min_contacts"}, {"genesis.floater_passes", "genesis.floater_passes"},
     {"genesis.floater_growth", "genesis.floater_growth"}, {"genesis.equilibrium_ratio", "genesis.equilibrium_ratio"},
     {"genesis.max_steps", "genesis.max_steps"},
-    {"ContactParams::effective_modulus", "material.effective_modulus_gpa"},
-    {"ContactParams::stiffness_ratio", "material.stiffness_ratio"}, {"ContactParams::friction", "material.friction"},
-    {"BondParams::effective_modulus", "material.bond_modulus_gpa"}, {"BondParams::stiffness_ratio", "material.bond_stiffness_ratio"},
-    {"BondParams::radius_multiplier", "material.radius_multiplier"}, {"BondParams::moment_factor", "material.moment_factor"},
-    {"BondParams::tensile_strength_mean", "material.tensile_strength_mpa"},
-    {"BondParams::tensile_strength_std", "material.tensile_strength_cv"}, {"BondParams::cohesion_mean", "material.cohesion_mpa"},
-    {"BondParams::cohesion_std", "material.cohesion_cv"}, {"BondParams::friction_angle_deg", "material.friction_angle_deg"},
-    {"MaterialParams::bond_gap_fraction", "material.bond_gap_fraction"},
-    {"MaterialParams::bond_gap_absolute", "material.bond_gap_um"}, {"MaterialParams::platen_friction", "material.platen_friction"},
-    {"MaterialParams::damping", "material.damping"},
     {"PlatenTestSpec::strain_rate", "test.strain_rate_per_s"}, {"PlatenTestSpec::ramp_strain", "test.ramp_strain"},
     {"PlatenTestSpec::platen_friction", "material.platen_friction"}, {"PlatenTestSpec::stop_fraction", "test.stop_fraction"},
     {"PlatenTestSpec::max_strain", "test.max_strain"}, {"PlatenTestSpec::record_interval", "test.record_interval"},
@@ -171,28 +186,31 @@ const FieldMap kFields = {
     {"CubeTestSpec::max_settle_steps", "test.max_settle_steps"}, {"CubeTestSpec::imbalance_warning", "test.imbalance_warning"},
 };
 
-// The TOML key a validator's message is about: its leading "field = " token, looked up as
-// spelled, or with the struct prefix normalised ("material.x", "cube_test.x", "MaterialParams::x").
-const std::string* toml_key_of(const std::string& reason) {
+// The TOML key a validator's message is about: its leading "field = " token, a material
+// parameter (by "material.<key>" or core's field name, from the material table), or looked up
+// as spelled, or with the struct prefix normalised ("cube_test.x", "CubeTestSpec::x").
+std::optional<std::string> toml_key_of(const std::string& reason) {
     const std::string token = reason.substr(0, reason.find(" = "));
-    if (auto it = kFields.find(token); it != kFields.end()) return &it->second;
+    if (const MaterialParameter* p = material_parameter_of_field(token)) return "material." + std::string(p->key);
+    if (auto it = kFields.find(token); it != kFields.end()) return it->second;
     const auto cut = token.find_last_of(".:");
-    if (cut == std::string::npos) return nullptr;
+    if (cut == std::string::npos) return std::nullopt;
     const std::string field = token.substr(cut + 1);
-    for (const char* prefix : {"MaterialParams::", "CubeTestSpec::", "PlatenTestSpec::"})
-        if (auto it = kFields.find(prefix + field); it != kFields.end()) return &it->second;
-    return nullptr;
+    for (const char* prefix : {"CubeTestSpec::", "PlatenTestSpec::"})
+        if (auto it = kFields.find(prefix + field); it != kFields.end()) return it->second;
+    return std::nullopt;
 }
 
 void check(const Context& ctx, const std::optional<std::string>& reason) {
     if (!reason) return;
-    const std::string* key = toml_key_of(*reason);
+    const std::optional<std::string> key = toml_key_of(*reason);
     const auto info = key ? ctx.keys.find(*key) : ctx.keys.end();
     if (info == ctx.keys.end()) throw InputError(ctx.file, 0, *reason);
     const auto at = reason->find(" violates ");
     const std::string rule = at == std::string::npos ? *reason : reason->substr(at + 10);
     std::string what = "key '" + *key + "' = " + info->second.text + " violates " + rule;
-    if (info->second.converted) what += " (checked as " + *reason + ")";
+    const bool in_config_units = reason->starts_with(*key + " = ");
+    if (info->second.converted && !in_config_units) what += " (checked as " + *reason + ")";
     throw InputError(ctx.file, info->second.line, what);
 }
 

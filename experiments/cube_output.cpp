@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "experiments/material_table.hpp"
 #include "experiments/vtk_output.hpp"
 #include "reports/atomic_file.hpp"
 
@@ -51,44 +52,22 @@ json popovics_json(const lab::PopovicsFit& f) {
             {"message", f.message}};
 }
 
+/// The material in SI (grouped as the structs) and in the config's keys and units ([material]),
+/// every row of the material table that the bond model uses.
 json material_json(const MaterialParams& m) {
-    const BondParams& b = m.bond;
-    const auto cv = [](double sd, double mean) { return mean > 0.0 ? sd / mean : 0.0; };
-    json si = {{"contact", {{"effective_modulus_pa", m.contact.effective_modulus},
-                            {"stiffness_ratio", m.contact.stiffness_ratio},
-                            {"friction", m.contact.friction}}},
-               {"bond", {{"effective_modulus_pa", b.effective_modulus},
-                         {"stiffness_ratio", b.stiffness_ratio},
-                         {"radius_multiplier", b.radius_multiplier},
-                         {"moment_factor", b.moment_factor},
-                         {"tensile_strength_mean_pa", b.tensile_strength_mean},
-                         {"tensile_strength_std_pa", b.tensile_strength_std},
-                         {"cohesion_mean_pa", b.cohesion_mean},
-                         {"cohesion_std_pa", b.cohesion_std},
-                         {"friction_angle_deg", b.friction_angle_deg},
-                         {"seed", b.seed}}},
-               {"bond_gap_fraction", m.bond_gap_fraction},
-               {"bond_gap_absolute_m", m.bond_gap_absolute},
-               {"platen_friction", m.platen_friction},
-               {"damping", m.damping}};
-    // The config's keys and units ([material] table).
-    json display = {{"effective_modulus_gpa", m.contact.effective_modulus * kGpa},
-                    {"stiffness_ratio", m.contact.stiffness_ratio},
-                    {"friction", m.contact.friction},
-                    {"bond_modulus_gpa", b.effective_modulus * kGpa},
-                    {"bond_stiffness_ratio", b.stiffness_ratio},
-                    {"radius_multiplier", b.radius_multiplier},
-                    {"moment_factor", b.moment_factor},
-                    {"tensile_strength_mpa", b.tensile_strength_mean * kMpa},
-                    {"tensile_strength_cv", cv(b.tensile_strength_std, b.tensile_strength_mean)},
-                    {"cohesion_mpa", b.cohesion_mean * kMpa},
-                    {"cohesion_cv", cv(b.cohesion_std, b.cohesion_mean)},
-                    {"friction_angle_deg", b.friction_angle_deg},
-                    {"bond_gap_fraction", m.bond_gap_fraction},
-                    {"bond_gap_um", m.bond_gap_absolute * 1e6},
-                    {"platen_friction", m.platen_friction},
-                    {"damping", m.damping},
-                    {"bond_seed", b.seed}};
+    const char* model = bond_model_name(m.bond.model);
+    json si = {{"model", model}}, display = {{"model", model}};
+    for (const MaterialParameter& p : material_table()) {
+        if (!p.in_config || !p.applies_to(m.bond.model)) continue;
+        json& group = p.si_group.empty() ? si : si[std::string(p.si_group)];
+        if (p.integer) {
+            group[std::string(p.si_name)] = p.get_int(m);
+            display[std::string(p.key)] = p.get_int(m);
+        } else {
+            group[std::string(p.si_name)] = p.get(m);
+            display[std::string(p.key)] = config_value(p, m);
+        }
+    }
     return {{"si", si}, {"display", display}};
 }
 

@@ -6,21 +6,16 @@
 #include <stdexcept>
 
 #include "core/world.hpp"
+#include "experiments/material_table.hpp"
 
 namespace gradem::exp {
 
 std::optional<std::string> MaterialParams::invalid_reason() const {
+    // The table's ranges (config units) first, then core's own rules as a backstop.
+    if (auto why = material_range_violation(*this)) return why;
     if (auto why = contact.invalid_reason()) return why;
     if (auto why = bond.invalid_reason()) return why;
-    std::ostringstream out;
-    if (!(bond_gap_fraction >= 0.0 && bond_gap_fraction <= 1.0))
-        out << "MaterialParams::bond_gap_fraction = " << bond_gap_fraction << " violates in [0, 1]";
-    else if (!(bond_gap_absolute >= 0.0 && bond_gap_absolute < 1.0e-3))
-        out << "MaterialParams::bond_gap_absolute = " << bond_gap_absolute << " violates in [0, 1e-3) m";
-    else if (!(platen_friction >= 0.0)) out << "MaterialParams::platen_friction = " << platen_friction << " violates >= 0";
-    else if (!(damping >= 0.0 && damping < 1.0)) out << "MaterialParams::damping = " << damping << " violates in [0, 1)";
-    if (out.str().empty()) return std::nullopt;
-    return out.str();
+    return std::nullopt;
 }
 
 std::optional<std::string> CubeTestSpec::invalid_reason() const {

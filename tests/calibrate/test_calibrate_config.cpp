@@ -130,3 +130,122 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
         }
     }
 }
+
+TEST_CASE("bond model of a calibration: chosen, its parameters checked, part of every ledger key", "[calibrate]") {
+    TempDir dir("cal-bond-model");
+    write_lab(dir.path);
+    SECTION("bad choices are rejected with the file, line and key") {
+        struct Case {
+            const char* name;
+            std::string calibration, rest, expected;
+        };
+        const std::vector<Case> cases = {
+            {"unknown bond model", "bond_model = \"damage\"\n", "", "unknown bond model (known: parallel_bond, soft_bond, flat_joint)"},
+            {"soft-bond parameter for a flat joint", "bond_model = \"flat_joint\"\n", "[parameters.softening_factor]\nfree = true\n",
+             "parameter 'softening_factor' belongs to bond model soft_bond, but this problem's bond model is flat_joint (from calibration.bond_model (line 3))"},
+            {"flat-joint parameter for the default parallel bond", "", "[parameters.residual_friction]\nfree = true\n",
+             "belongs to bond model flat_joint, but this problem's bond model is parallel_bond (from the base config's material.model)"},
+            {"element count free", "bond_model = \"flat_joint\"\n", "[parameters.radial_elements]\nfree = true\n",
+             "key 'parameters.radial_elements.free' = true: radial_elements is an integer"},
+            {"element count not whole", "bond_model = \"flat_joint\"\n", "[parameters.angular_elements]\nstart = 2.5\n",
+             "key 'parameters.angular_elements.start' = 2.5: angular_elements is an integer"},
+            {"element count below 1", "bond_model = \"flat_joint\"\n", "[parameters.angular_elements]\nstart = 0\n",
+             "material.angular_elements = 0 violates in [1, 64]"},
+            {"softening factor out of range", "bond_model = \"soft_bond\"\n", "[parameters.softening_factor]\nstart = 0.0\n",
+             "material.softening_factor = 0 violates > 0"},
+            {"cut fraction out of range", "bond_model = \"soft_bond\"\n", "[parameters.cut_fraction]\nstart = 1.0\n",
+             "material.cut_fraction = 1 violates in [0, 1)"},
+        };
+        for (const Case& c : cases) {
+            DYNAMIC_SECTION(c.name) {
+                const fs::path cfg = test::write_problem(dir.path, c.calibration, c.rest);
+                REQUIRE_THROWS_AS(cal::load_calibration_problem(cfg), lab::InputError);
+                REQUIRE_THROWS_WITH(cal::load_calibration_problem(cfg), Contains(cfg.string()) && Contains(c.expected));
+            }
+        }
+    }
+    SECTION("the flat joint's fixed counts and free friction reach the material") {
+        const fs::path cfg = test::write_problem(dir.path, "bond_model = \"flat_joint\"\n",
+                                                 "[parameters.radial_elements]\nstart = 2\n[parameters.angular_elements]\nstart = 3\n"
+                                                 "[parameters.residual_friction]\nfree = true\nstart = 0.7\n");
+        const cal::CalibrationProblem p = cal::load_calibration_problem(cfg);
+        CHECK(p.bond_model() == BondModel::flat_joint);
+        const cal::ParameterSpace space(p.parameters, p.base.material);
+        const auto mu = space.index_of("residual_friction");
+        REQUIRE(mu.has_value());
+        CHECK_FALSE(space.index_of("radial_elements").has_value());  // fixed
+        std::vector<double> x = space.start();
+        x[*mu] = 0.35;
+        const exp::MaterialParams m = space.material(x);
+        CHECK(m.bond.model == BondModel::flat_joint);
+        CHECK(m.bond.flat.radial_elements == 2);
+        CHECK(m.bond.flat.angular_elements == 3);
+        CHECK(m.bond.flat.residual_friction == 0.35);
+    }
+    SECTION("ledger keys: a parallel-bond key is unchanged, another model's names the model and its parameters") {
+        exp::MaterialParams pb = exp::load_cube_config(test::calibration_base_config()).material;
+        const std::string pb_key = cal::material_key(pb);
+        CHECK(pb_key.find("model") == std::string::npos);
+        pb.bond.soft.softening_factor = 0.77;  // not the parallel bond's: no effect on its runs or key
+        CHECK(cal::material_key(pb) == pb_key);
+        exp::MaterialParams soft = pb;
+        soft.bond.model = BondModel::soft_bond;
+        const std::string soft_key = cal::material_key(soft);
+        CHECK(soft_key.rfind(pb_key, 0) == 0);
+        CHECK_THAT(soft_key, Contains(" model=soft_bond softening_factor=") && Contains(" cut_fraction="));
+        soft.bond.soft.softening_factor = std::nextafter(0.77, 1.0);
+        CHECK(cal::material_key(soft) != soft_key);  // exact: the last bit counts
+        exp::MaterialParams flat = pb;
+        flat.bond.model = BondModel::flat_joint;
+        CHECK_THAT(cal::material_key(flat), Contains("model=flat_joint radial_elements=1 angular_elements=4 residual_friction="));
+    }
+    SECTION("a ledger of the parallel-bond problem is refused for the soft-bond one") {
+        auto model = cal::make_analytic_model(2, 0.001);
+        const cal::CalibrationProblem pb =
+            cal::load_calibration_problem(test::write_problem(dir.path, "", "[solver]\nmax_runs = 12\n[output]\ndir = \"out\"\n", "pb.toml"));
+        cal::run_calibration(pb, *model);
+        const cal::CalibrationProblem soft = cal::load_calibration_problem(
+            test::write_problem(dir.path, "bond_model = \"soft_bond\"\n", "[solver]\nmax_runs = 12\n[output]\ndir = \"out\"\n", "soft.toml"));
+        REQUIRE(soft.ledger == pb.ledger);
+        REQUIRE_THROWS_WITH(cal::run_calibration(soft, *model), Contains("another problem definition") && Contains("model=soft_bond"));
+    }
+}
+
+TEST_CASE("the shipped soft-bond and flat-joint calibration configs load within a 60-run budget", "[calibrate]") {
+    TempDir dir("cal-shipped-models");
+    write_lab(dir.path);
+    const fs::path configs = fs::path(GRADEM_SOURCE_DIR) / "calibrate" / "configs";
+    struct Shipped {
+        const char* name;
+        BondModel model;
+        std::vector<std::string> free;
+    };
+    for (const Shipped& s : {Shipped{"joint_soft_bond.toml", BondModel::soft_bond,
+                                     {"effective_modulus_gpa", "tensile_strength_mpa", "softening_factor", "cut_fraction"}},
+                             Shipped{"joint_flat_joint.toml", BondModel::flat_joint,
+                                     {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "residual_friction"}}}) {
+        DYNAMIC_SECTION(s.name) {
+            std::string text = bytes(configs / s.name);
+            std::string quoted_base = "\"";  // built in steps: GCC 12 warns (-Wrestrict) on "\"" + s + "\""
+            quoted_base += test::calibration_base_config().string();
+            quoted_base += "\"";
+            text = replace_once(text, "\"../../experiments/configs/calibration_cube.toml\"", quoted_base);
+            text = replace_once(text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+            test::write_text(dir.path / s.name, text);
+            const cal::CalibrationProblem p = cal::load_calibration_problem(dir.path / s.name);
+            CHECK(p.bond_model() == s.model);
+            CHECK(p.solver.method == cal::Method::scaling);
+            CHECK(p.solver.max_runs <= 60);
+            CHECK(p.weights.strain >= p.weights.peak);  // the strain at peak counts as much as the peak
+            const cal::ParameterSpace space(p.parameters, p.base.material);
+            std::vector<std::string> free;
+            for (std::size_t k = 0; k < space.size(); ++k) free.push_back(space.free(k).name);
+            CHECK(free == s.free);
+            const exp::MaterialParams m = space.material(space.start());
+            CHECK(m.bond.model == s.model);
+            CHECK_FALSE(m.invalid_reason().has_value());
+            // The ledger's problem fingerprint depends on the model.
+            CHECK(p.describe().find(std::string("model=") + bond_model_name(s.model)) != std::string::npos);
+        }
+    }
+}

@@ -9,12 +9,15 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_output.hpp"
+#include "experiments/material_table.hpp"
 #include "lab_data/input_error.hpp"
 
 using namespace gradem;
@@ -247,4 +250,129 @@ TEST_CASE("result writers: curve and crack CSVs, macro.json with null for NaN", 
     CHECK(j.contains("chord_modulus_mpa"));
     CHECK(j.contains("strain_at_peak"));
     CHECK(j["material"]["display"].contains("tensile_strength_mpa"));
+}
+
+TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macro.json shows them", "[cube_config]") {
+    const TempDir dir("config-models");
+    write(dir.path / "sand.csv", kSieve);
+    SECTION("soft bond") {
+        const CubeConfig c = load_cube_config(write(dir.path / "s.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
+                                                                       "model = \"soft_bond\"\nsoftening_factor = 0.4\ncut_fraction = 0.1\n"));
+        CHECK(c.material.bond.model == BondModel::soft_bond);
+        CHECK(c.material.bond.soft.softening_factor == 0.4);
+        CHECK(c.material.bond.soft.cut_fraction == 0.1);
+        const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
+        CHECK(j["display"]["model"] == "soft_bond");
+        CHECK(j["display"]["softening_factor"] == 0.4);
+        CHECK(j["si"]["soft_bond"]["cut_fraction"] == 0.1);
+        CHECK_FALSE(j["display"].contains("radial_elements"));
+    }
+    SECTION("flat joint") {
+        const CubeConfig c = load_cube_config(write(dir.path / "f.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
+                                                                       "model = \"flat_joint\"\nradial_elements = 2\n"
+                                                                       "angular_elements = 3\nresidual_friction = 0.6\n"));
+        CHECK(c.material.bond.model == BondModel::flat_joint);
+        CHECK(c.material.bond.flat.radial_elements == 2);
+        CHECK(c.material.bond.flat.angular_elements == 3);
+        CHECK(c.material.bond.flat.residual_friction == 0.6);
+        const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
+        CHECK(j["si"]["flat_joint"]["angular_elements"] == 3);
+        CHECK_FALSE(j["display"].contains("softening_factor"));
+    }
+    SECTION("parallel bond by default, and without the other models' keys in macro.json") {
+        const CubeConfig c = load_cube_config(write(dir.path / "p.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n"));
+        CHECK(c.material.bond.model == BondModel::parallel_bond);
+        const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
+        CHECK(j["display"]["model"] == "parallel_bond");
+        CHECK_FALSE(j["si"].contains("soft_bond"));
+        CHECK_FALSE(j["si"].contains("flat_joint"));
+    }
+}
+
+TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[cube_config]") {
+    const TempDir dir("config-bad-models");
+    const fs::path file = dir.path / "bad.toml";
+    write(dir.path / "sand.csv", kSieve);
+    SECTION("unknown model: the known ones are listed") {
+        write(file, config_with("material", "model = \"damage\""));
+        require_rejected(file, 4, {"key 'material.model' = \"damage\"", "unknown bond model", "parallel_bond, soft_bond, flat_joint"});
+        write(file, config_with("material", "model = 3"));
+        require_rejected(file, 4, {"key 'material.model' = 3", "expected a string"});
+    }
+    SECTION("a parameter of another model") {
+        write(file, config_with("material", "model = \"flat_joint\"\nsoftening_factor = 0.3"));
+        require_rejected(file, 5, {"key 'material.softening_factor' belongs to bond model soft_bond", "material.model = \"flat_joint\" (line 4)"});
+        write(file, config_with("material", "radial_elements = 2"));
+        require_rejected(file, 4, {"key 'material.radial_elements' belongs to bond model flat_joint", "\"parallel_bond\" (the default)",
+                                   "set model = \"flat_joint\""});
+        write(file, config_with("material", "model = \"soft_bond\"\nresidual_friction = 0.5"));
+        require_rejected(file, 5, {"'material.residual_friction' belongs to bond model flat_joint"});
+    }
+    SECTION("shape parameters out of range") {
+        for (const auto& [line, expected] : std::vector<std::pair<std::string, std::string>>{
+                 {"softening_factor = 0", "key 'material.softening_factor' = 0 violates > 0"},
+                 {"softening_factor = -0.5", "key 'material.softening_factor' = -0.5 violates > 0"},
+                 {"cut_fraction = 1.0", "key 'material.cut_fraction' = 1.0 violates in [0, 1)"},
+                 {"cut_fraction = -0.1", "key 'material.cut_fraction' = -0.1 violates in [0, 1)"}}) {
+            write(file, config_with("material", "model = \"soft_bond\"\n" + line));
+            require_rejected(file, 5, {expected});
+        }
+        for (const auto& [line, expected] : std::vector<std::pair<std::string, std::string>>{
+                 {"radial_elements = 0", "key 'material.radial_elements' = 0 violates in [1, 64]"},
+                 {"angular_elements = -3", "key 'material.angular_elements' = -3 violates in [1, 64]"},
+                 {"angular_elements = 10000000000", "key 'material.angular_elements' = 10000000000 violates in [1, 64]"},
+                 {"radial_elements = 1.5", "key 'material.radial_elements' = 1.5: expected an integer"},
+                 {"residual_friction = -0.2", "key 'material.residual_friction' = -0.2 violates >= 0"}}) {
+            write(file, config_with("material", "model = \"flat_joint\"\n" + line));
+            require_rejected(file, 5, {expected});
+        }
+    }
+}
+
+TEST_CASE("material table: one row per key, defaults in range, ranges agree with core's validators", "[material_table]") {
+    std::set<std::string> keys;
+    MaterialParams defaults;
+    for (const MaterialParameter& p : material_table()) {
+        INFO(p.key);
+        CHECK(keys.insert(std::string(p.key)).second);
+        CHECK_FALSE(p.unit.empty());
+        CHECK_FALSE(p.description.empty());
+        if (p.in_config) CHECK_FALSE(p.si_name.empty());
+        if (p.integer) CHECK((p.get_int && p.set_int));
+        if (!p.follows.empty()) CHECK(find_material_parameter(p.follows) != nullptr);
+        if (!p.cv_of.empty()) CHECK(find_material_parameter(p.cv_of) != nullptr);
+        if (p.calibration == Calibration::free) {
+            CHECK(p.lower < p.upper);
+            if (p.log_scale) CHECK(p.lower > 0.0);
+        }
+        if (p.in_config && !p.integer) {  // config units <-> SI round trip
+            MaterialParams m;
+            set_config_value(p, m, 0.37);
+            CHECK(config_value(p, m) == Approx(0.37));
+        }
+        // The struct default of every model's rows is valid.
+        MaterialParams m;
+        for (BondModel b : bond_models()) {
+            m.bond.model = b;
+            CHECK_FALSE(m.invalid_reason().has_value());
+        }
+        // Just below the lower bound: the table says so in config units, and if core checks
+        // the field too, its message names a field that maps back to this row.
+        if (p.in_config && std::isfinite(p.range.lower) && p.applies_to(BondModel::parallel_bond) == false) {
+            m.bond.model = p.applies_to(BondModel::soft_bond) ? BondModel::soft_bond : BondModel::flat_joint;
+            const double below = p.range.lower_open ? p.range.lower : p.range.lower - 1.0;
+            if (p.integer) p.set_int(m, static_cast<std::int64_t>(below));
+            else set_config_value(p, m, below);
+            const auto why = material_range_violation(m);
+            REQUIRE(why.has_value());
+            CHECK_THAT(*why, Contains("material." + std::string(p.key) + " = "));
+            const auto core = m.bond.invalid_reason();
+            REQUIRE(core.has_value());
+            CHECK(material_parameter_of_field(core->substr(0, core->find(" = "))) == &p);
+        }
+    }
+    CHECK(bond_model_names() == "parallel_bond, soft_bond, flat_joint");
+    CHECK(Range{0.0, 1.0, true, false}.rule() == "in (0, 1]");
+    CHECK(Range{0.0, std::numeric_limits<double>::infinity(), false, false}.rule() == ">= 0");
+    CHECK_FALSE(Range{0.0, 1.0, true, false}.contains(std::nan("")));
 }
