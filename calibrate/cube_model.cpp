@@ -33,7 +33,16 @@ std::string material_key(const exp::MaterialParams& m) {
                   b.radius_multiplier, b.moment_factor, b.tensile_strength_mean, b.tensile_strength_std, b.cohesion_mean,
                   b.cohesion_std, b.friction_angle_deg, static_cast<unsigned long long>(b.seed), m.bond_gap_fraction,
                   m.bond_gap_absolute, m.platen_friction, m.damping);
-    return buf;
+    std::string key = buf;
+    // The bond law and its shape parameters; absent for parallel bonds, so ledger keys of
+    // parallel-bond runs stay what they were before the other laws existed.
+    if (b.model != BondModel::parallel_bond) {
+        std::snprintf(buf, sizeof buf, " law=%s soft=%a,%a flat=%d,%d,%a", bond_model_name(b.model), b.soft.softening_factor,
+                      b.soft.cut_fraction, static_cast<int>(b.flat.radial_elements), static_cast<int>(b.flat.angular_elements),
+                      b.flat.residual_friction);
+        key += buf;
+    }
+    return key;
 }
 
 std::string fnv1a_hex(const std::string& text) {

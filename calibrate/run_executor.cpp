@@ -1,0 +1,38 @@
+#include "calibrate/run_executor.hpp"
+
+#include <unistd.h>
+
+#include <climits>
+#include <mutex>
+
+#include "calibrate/thread_pool.hpp"
+
+namespace gradem::cal {
+
+std::string host_name() {
+    char buf[HOST_NAME_MAX + 1] = {};
+    if (gethostname(buf, sizeof buf - 1) != 0 || buf[0] == '\0') return "unknown";
+    return buf;
+}
+
+ThreadExecutor::ThreadExecutor(CubeModel& model, int workers) : model_(model), workers_(std::max(1, workers)) {
+    place_.rank = 0;
+    place_.host = host_name();
+}
+
+void ThreadExecutor::prepare(const std::vector<std::uint64_t>& seeds, const Log& log) { model_.prepare(seeds, workers_, log); }
+
+void ThreadExecutor::run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) {
+    std::mutex mutex;
+    parallel_for(requests.size(), workers_, [&](std::size_t k) {
+        const RunOutcome outcome = model_.run(requests[k], timeout_s);
+        const std::lock_guard lock(mutex);
+        done(k, outcome, place_);
+    });
+}
+
+std::string ThreadExecutor::describe() const {
+    return std::to_string(workers_) + (workers_ == 1 ? " thread" : " threads") + " on " + place_.host;
+}
+
+}  // namespace gradem::cal
