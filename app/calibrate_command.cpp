@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -106,6 +107,11 @@ int run_calibrate(const std::vector<std::string>& args) {
             },
             [&](cal::CubeModel& model, cal::mpi::MpiExecutor& executor) { return calibrate_and_report(problem, model, executor); });
     }
+#else
+    // Several copies of a build without MPI would each run the whole calibration into one ledger.
+    if (cal::started_by_mpi_launcher())
+        throw std::runtime_error("this gradem was built without MPI (GRADEM_MPI=OFF or no Open MPI found): run it without mpirun, "
+                         "or rebuild with libopenmpi-dev installed");
 #endif
     const cal::CalibrationProblem problem = load_problem(o);
     auto model = cal::make_model(problem);

@@ -1,7 +1,7 @@
 // The MPI executor (calibrate/mpi_executor.hpp). Only rank 0's main thread and the workers'
 // main threads call MPI (MPI_THREAD_FUNNELED). Nobody blocks in MPI: Open MPI busy-polls in
 // a blocking receive, which would take a core from the cube tests, so every wait is
-// MPI_Iprobe with a short sleep (20 us doubling to 1 ms) - and can time out.
+// MPI_Iprobe with short sleeps (class Backoff) - and can time out.
 #include "calibrate/mpi_executor.hpp"
 
 #include <mpi.h>
@@ -54,17 +54,23 @@ std::optional<Message> poll(int source) {
     return m;
 }
 
-/// Sleeps between polls: short right after a message, up to 1 ms when idle.
+/// Between polls: a few hundred immediate re-polls first (an answer that is on its way costs
+/// no sleep, which a loaded node may stretch to a scheduler slice), then sleeps from 20 us
+/// doubling to 1 ms when idle.
 class Backoff {
 public:
-    void reset() { us_ = 20; }
+    void reset() { spins_ = 0, us_ = 20; }
     void wait() {
+        if (spins_ < 256) {
+            ++spins_;
+            return;
+        }
         std::this_thread::sleep_for(std::chrono::microseconds(us_));
         us_ = std::min(us_ * 2, 1000);
     }
 
 private:
-    int us_ = 20;
+    int spins_ = 0, us_ = 20;
 };
 
 /// The next message from `source` (MPI_ANY_SOURCE: anyone), or nullopt after `timeout_s`
@@ -95,11 +101,7 @@ int world_rank() {
 
 }  // namespace
 
-bool launched() {
-    for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
-        if (std::getenv(var)) return true;
-    return false;
-}
+bool launched() { return started_by_mpi_launcher(); }
 
 Session::Session() {
     int provided = 0;
@@ -173,7 +175,9 @@ int serve(CubeModel* model, const std::string& load_error, const WorkerIdentity&
                     send(0, Kind::result, wire::encode(result));
                     break;
                 }
-                case Kind::stop: return wire::decode_stop(m.bytes).reason.empty() && load_error.empty() ? 0 : 2;
+                // Rank 0 reports and sets the job's exit code; a worker exiting non-zero would
+                // make mpirun kill rank 0 before it has said why.
+                case Kind::stop: return 0;
                 default: refuse(std::string("unexpected '") + wire::to_string(wire::kind_of(m.bytes)) + "' message");
             }
         } catch (const wire::WireError& e) {

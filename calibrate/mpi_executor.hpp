@@ -15,7 +15,9 @@
 //     longer used; if none is left the calibration stops with a message; a job with a lost
 //     rank ends with MPI_Abort (it cannot finalize) once rank 0 has written its outputs;
 //   - a worker process that exits or is killed: mpirun ends the whole job (its default), so
-//     nothing hangs; rerun the same command and it resumes from the ledger.
+//     nothing hangs; rerun the same command and it resumes from the ledger. Under
+//     `mpirun --enable-recovery` the job lives on and the dead worker is given up after
+//     timeout_s + grace like a stuck one.
 // Bad setups end at start-up with a message from rank 0 naming the rank, its host and what
 // is wrong (one rank only, another code version or model, packings it cannot read).
 #include <functional>
@@ -58,8 +60,9 @@ struct WorkerIdentity {
 };
 
 /// A worker rank's life: hello (with `load_error` if it could not load the problem or
-/// model), then prepare and run requests until rank 0 says stop. Returns the exit code:
-/// 0 after a normal stop, 2 otherwise.
+/// model), then prepare and run requests until rank 0 says stop. Returns 0 then, whatever
+/// the reason: rank 0 reports and sets the job's exit code (mpirun kills the job as soon as
+/// one rank exits non-zero, which could cut rank 0's message off).
 int serve(CubeModel* model, const std::string& load_error, const WorkerIdentity& identity = {});
 
 /// Rank 0, when it cannot go on before an executor exists: waits for every worker's hello

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <climits>
+#include <cstdlib>
 #include <mutex>
 
 #include "calibrate/thread_pool.hpp"
@@ -13,6 +14,12 @@ std::string host_name() {
     char buf[HOST_NAME_MAX + 1] = {};
     if (gethostname(buf, sizeof buf - 1) != 0 || buf[0] == '\0') return "unknown";
     return buf;
+}
+
+bool started_by_mpi_launcher() {
+    for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+        if (std::getenv(var)) return true;
+    return false;
 }
 
 ThreadExecutor::ThreadExecutor(CubeModel& model, int workers) : model_(model), workers_(std::max(1, workers)) {

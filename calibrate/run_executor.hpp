@@ -23,6 +23,10 @@ struct RunPlace {
 /// This machine's host name ("unknown" if it cannot be read).
 std::string host_name();
 
+/// True when an MPI launcher (mpirun, mpiexec, srun with PMIx/PMI) started this process,
+/// whether or not this build has MPI (a build without it must refuse such a start).
+bool started_by_mpi_launcher();
+
 class RunExecutor {
 public:
     /// Called once per request when it ends: its index in the batch, outcome and place.
