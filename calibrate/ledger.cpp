@@ -69,8 +69,23 @@ std::string meta_value(sqlite3* db, const std::string& key, const fs::path& file
     return s.step() == SQLITE_ROW ? s.column_text(0) : std::string();
 }
 
+/// A process killed in the middle of a commit (kill -9, a batch job's end) leaves a hot
+/// journal. SQLite rolls it back - restoring the last committed state - on the next read by a
+/// connection that may write; a read-only connection cannot, and would see no tables.
+void roll_back_interrupted_commit(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::exists(path.string() + "-journal", ec)) return;
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK) {
+        sqlite3_busy_timeout(db, 5000);
+        sqlite3_exec(db, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
+    }
+    sqlite3_close(db);
+}
+
 /// Checks an existing file read-only: an SQLite ledger of this problem, or an error.
 void check_existing(const fs::path& path, const std::string& fingerprint, const std::string& description) {
+    roll_back_interrupted_commit(path);
     sqlite3* db = nullptr;
     if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
         sqlite3_close(db);

@@ -14,7 +14,9 @@ constexpr std::uint32_t kByteOrder = 0x01020304;
 static_assert(sizeof(ContactParams) == 3 * 8, "ContactParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(SoftBondParams) == 2 * 8, "SoftBondParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(FlatJointParams) == 2 * 4 + 8, "FlatJointParams changed: serialise the new field in run_message.cpp");
-static_assert(sizeof(BondParams) == 10 * 8 + 8 + 16 + 16, "BondParams changed: serialise the new field in run_message.cpp");
+static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* model, padded */ + sizeof(SoftBondParams) +
+                                       sizeof(FlatJointParams),
+              "BondParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(exp::MaterialParams) == 24 + sizeof(BondParams) + 4 * 8,
               "MaterialParams changed: serialise the new field in run_message.cpp");
 

@@ -221,7 +221,13 @@ TEST_CASE("ledger: a process killed in the middle of a commit leaves a hot journ
     if (child == 0) {
         sqlite3* db = nullptr;
         sqlite3_open(path.c_str(), &db);
-        sqlite3_exec(db, "BEGIN; UPDATE runs SET status = 'half-written'; DELETE FROM meta;", nullptr, nullptr, nullptr);
+        // A cache of two pages: the transaction spills into the database file, so the journal
+        // is synced and hot (a reader must roll it back before it can trust the file).
+        sqlite3_exec(db,
+                     "PRAGMA cache_size = 2; BEGIN; UPDATE runs SET status = 'half-written'; DELETE FROM meta;"
+                     " CREATE TABLE junk(b BLOB); WITH RECURSIVE c(x) AS (SELECT 1 UNION ALL SELECT x + 1 FROM c WHERE x < 500)"
+                     " INSERT INTO junk SELECT randomblob(4000) FROM c;",
+                     nullptr, nullptr, nullptr);
         _exit(0);
     }
     int status = 0;
