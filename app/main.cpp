@@ -21,7 +21,6 @@ constexpr const char* kUsage =
     "                                          cube test of a config: load curve, cracks, macro.json\n"
     "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
-    "                                          (mpirun -np N gradem calibrate ...: N-1 cube tests at a time)\n"
     "  --help, --version\n";
 
 }  // namespace

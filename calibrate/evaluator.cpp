@@ -17,6 +17,12 @@ Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& sp
     : problem_(problem), space_(space), executor_(executor), ledger_(ledger), fingerprint_(std::move(model_fingerprint)),
       progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {}
 
+Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
+                     std::string model_fingerprint, std::function<void(const Progress&)> progress)
+    : problem_(problem), space_(space), own_executor_(std::make_unique<ThreadExecutor>(model, problem.workers)),
+      executor_(*own_executor_), ledger_(ledger), fingerprint_(std::move(model_fingerprint)), progress_(std::move(progress)),
+      start_(std::chrono::steady_clock::now()) {}
+
 double Evaluator::seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }

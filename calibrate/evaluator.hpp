@@ -5,6 +5,7 @@
 // runs of this calibration, from the ledger or not, so a resumed calibration takes the same path.
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -56,6 +57,9 @@ class Evaluator {
 public:
     Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
               std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
+    /// The runs on problem.workers threads of this process (`model` already prepared).
+    Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
+              std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
 
     /// Evaluates every point on `sands` (indices into problem.sands); all their runs go to the
     /// executor together (a batch of 20 finite-difference points fills 20 workers). Throws BudgetExhausted (before running anything) when the new
@@ -87,6 +91,7 @@ private:
 
     const CalibrationProblem& problem_;
     const ParameterSpace& space_;
+    std::unique_ptr<RunExecutor> own_executor_;  ///< the thread executor of the second constructor
     RunExecutor& executor_;
     Ledger& ledger_;
     std::string fingerprint_;

@@ -5,6 +5,7 @@
 #include <climits>
 #include <cstdlib>
 #include <mutex>
+#include <stdexcept>
 
 #include "calibrate/thread_pool.hpp"
 
@@ -22,12 +23,20 @@ bool started_by_mpi_launcher() {
     return false;
 }
 
-ThreadExecutor::ThreadExecutor(CubeModel& model, int workers) : model_(model), workers_(std::max(1, workers)) {
+ThreadExecutor::ThreadExecutor(CubeModel& model, int workers) : ThreadExecutor(static_cast<const CubeModel&>(model), workers) {
+    preparable_ = &model;
+}
+
+ThreadExecutor::ThreadExecutor(const CubeModel& model, int workers)
+    : model_(model), preparable_(nullptr), workers_(std::max(1, workers)) {
     place_.rank = 0;
     place_.host = host_name();
 }
 
-void ThreadExecutor::prepare(const std::vector<std::uint64_t>& seeds, const Log& log) { model_.prepare(seeds, workers_, log); }
+void ThreadExecutor::prepare(const std::vector<std::uint64_t>& seeds, const Log& log) {
+    if (!preparable_) throw std::logic_error("ThreadExecutor::prepare: the model was given as const (prepare it before)");
+    preparable_->prepare(seeds, workers_, log);
+}
 
 void ThreadExecutor::run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) {
     std::mutex mutex;

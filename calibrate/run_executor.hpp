@@ -51,13 +51,16 @@ public:
 class ThreadExecutor final : public RunExecutor {
 public:
     ThreadExecutor(CubeModel& model, int workers);
+    /// Over a model prepared elsewhere: prepare() is then an error.
+    ThreadExecutor(const CubeModel& model, int workers);
     void prepare(const std::vector<std::uint64_t>& seeds, const Log& log) override;
     void run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) override;
     [[nodiscard]] int slots() const override { return workers_; }
     [[nodiscard]] std::string describe() const override;
 
 private:
-    CubeModel& model_;
+    const CubeModel& model_;
+    CubeModel* preparable_;  ///< the same model, when it may be prepared here
     int workers_;
     RunPlace place_;
 };

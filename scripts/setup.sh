@@ -7,8 +7,8 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libnlopt-cxx-dev libnlopt-dev libceres-dev libfccp-dev catch2
   libtomlplusplus-dev nlohmann-json3-dev libsqlite3-dev
-  libopenmpi-dev openmpi-bin
   clang
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

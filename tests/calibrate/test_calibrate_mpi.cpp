@@ -160,9 +160,10 @@ fs::path dem_problem(const fs::path& dir) {
     auto replace = [&](const std::string& from, const std::string& to) {
         const auto at = base.find(from);
         REQUIRE(at != std::string::npos);
-        base = base.substr(0, at) + to + base.substr(at + from.size());  // (not replace(): GCC 12 -Wrestrict false positive)
+        base.replace(at, from.size(), to);
     };
-    replace("\"../../lab_data/datasets/study\"", "\"" + (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string() + "\"");
+    const std::string study = (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string();
+    replace("\"../../lab_data/datasets/study\"", std::string("\"") + study + "\"");
     replace("\"../../out/packing-cache\"", "\"cache\"");
     replace("min_diameter_mm = 0.149", "min_diameter_mm = 0.25");
     replace("max_diameter_mm = 0.8", "max_diameter_mm = 0.5");

@@ -143,6 +143,10 @@ TEST_CASE("thread executor: every request once, callbacks one at a time, outcome
     CHECK(overlap == 0);
     CHECK(std::set<int>(calls.begin(), calls.end()) == std::set<int>{1});
     CHECK(threads.slots() == 3);
+    // Over a const model (prepared elsewhere) it runs, but does not prepare.
+    const cal::CubeModel& prepared = *model;
+    cal::ThreadExecutor over_const(prepared, 1);
+    CHECK_THROWS_AS(over_const.prepare({1}, {}), std::logic_error);
 }
 
 namespace {
