@@ -266,7 +266,7 @@ std::vector<double> best_of(const cal::CalibrationResult& r) { return r.stages.a
 
 }  // namespace
 
-TEST_CASE("a worker rank that exits mid-run ends the job without a hang; the rerun resumes from the ledger",
+TEST_CASE("a worker rank that exits mid-run ends the job without a hang, the rerun resumes from the ledger",
           "[calibrate][mpi]") {
     TempDir dir("cal-mpi-die");
     const fs::path cfg = analytic_problem(dir.path, 60);

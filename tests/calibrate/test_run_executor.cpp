@@ -164,7 +164,7 @@ void sql(const fs::path& file, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("ledger: rank and host per run; a schema-1 ledger is upgraded and stays readable; a newer one is refused",
+TEST_CASE("ledger: rank and host per run, a schema-1 ledger is upgraded and stays readable, a newer one is refused",
           "[calibrate][executor]") {
     TempDir dir("cal-ledger-schema");
     const fs::path old = dir.path / "old.sqlite";
@@ -211,7 +211,7 @@ TEST_CASE("ledger: rank and host per run; a schema-1 ledger is upgraded and stay
     CHECK(fs::last_write_time(old) == before);
 }
 
-TEST_CASE("ledger: a process killed in the middle of a commit leaves a hot journal; the ledger still opens and resumes",
+TEST_CASE("ledger: a process killed in the middle of a commit leaves a hot journal, the ledger still opens and resumes",
           "[calibrate][executor]") {
     TempDir dir("cal-ledger-journal");
     const fs::path path = dir.path / "ledger.sqlite";
