@@ -2,19 +2,26 @@
 // problem of a config (calibrate/README.md) and writes summary.json, summary.md,
 // convergence.csv and curves.csv into its output folder. Milestones and a progress line with
 // an ETA go to stderr; the one-line brief report goes to stdout.
-// Exit codes: 0 done, 2 bad usage, input or ledger (the ledger is left untouched), 4 the
-// calibration finished but every evaluation failed.
+// Under an MPI launcher (mpirun -np N gradem calibrate ..., GRADEM_MPI builds) rank 0 runs the
+// calibration and ranks 1..N-1 run the cube tests (calibrate/mpi_executor.hpp); the answer is
+// the same as with threads.
+// Exit codes: 0 done, 2 bad usage, input, ledger (the ledger is left untouched) or MPI setup,
+// 4 the calibration finished but every evaluation failed.
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "calibrate/calibration.hpp"
+#ifdef GRADEM_HAVE_MPI
+#include "calibrate/mpi_executor.hpp"
+#endif
 #include "calibrate/report.hpp"
 #include "reports/clock_text.hpp"
 #include "reports/html_report.hpp"
@@ -51,10 +58,7 @@ void print_progress(const cal::Progress& p) {
                  clock_text(p.elapsed_s).c_str(), clock_text(eta).c_str(), tty ? "   " : "\n");
 }
 
-}  // namespace
-
-int run_calibrate(const std::vector<std::string>& args) {
-    const CalibrateOptions o = parse_calibrate(args);
+cal::CalibrationProblem load_problem(const CalibrateOptions& o) {
     cal::CalibrationProblem problem = cal::load_calibration_problem(o.config);
     if (!o.out.empty()) {
         const bool default_ledger = problem.ledger == problem.out_dir / "ledger.sqlite";
@@ -63,12 +67,16 @@ int run_calibrate(const std::vector<std::string>& args) {
     }
     if (o.max_runs) problem.solver.max_runs = o.max_runs;
     if (o.workers) problem.workers = o.workers;
+    return problem;
+}
+
+/// Runs the calibration on `executor`, writes the outputs and the brief report.
+int calibrate_and_report(const cal::CalibrationProblem& problem, const cal::CubeModel& model, cal::RunExecutor& executor) {
     if (problem.representative)
         std::fprintf(stderr, "calibrate: the lab data are REPRESENTATIVE, not measurements (see %s)\n", problem.lab_results.c_str());
-    auto model = cal::make_model(problem);
     const bool tty = isatty(fileno(stderr)) != 0;
     const cal::CalibrationResult result = cal::run_calibration(
-        problem, *model,
+        problem, model, executor,
         [tty](const std::string& line) { std::fprintf(stderr, "%scalibrate: %s\n", tty ? "\r" : "", line.c_str()); },
         print_progress);
     if (tty) std::fprintf(stderr, "\n");
@@ -76,9 +84,36 @@ int run_calibrate(const std::vector<std::string>& args) {
     std::printf("%s\n", cal::brief_report(problem, result).c_str());
     std::printf("results in %s\n", problem.out_dir.c_str());
     report::write_html_report_or_warn(report::ReportKind::calibrate, problem.out_dir, std::cout);
+    std::fflush(stdout);
     bool any_ok = false;
     for (const auto& st : result.stages) any_ok = any_ok || (!st.solution.best.empty() && !st.solution.best_eval.failed);
     return any_ok ? 0 : 4;
+}
+
+}  // namespace
+
+int run_calibrate(const std::vector<std::string>& args) {
+    const CalibrateOptions o = parse_calibrate(args);
+#ifdef GRADEM_HAVE_MPI
+    if (cal::mpi::launched()) {
+        cal::CalibrationProblem problem;
+        return cal::mpi::run_job(
+            [&](int) {
+                problem = load_problem(o);
+                return cal::mpi::JobModel{cal::make_model(problem), problem.workers};
+            },
+            [&](cal::CubeModel& model, cal::mpi::MpiExecutor& executor) { return calibrate_and_report(problem, model, executor); });
+    }
+#else
+    // Several copies of a build without MPI would each run the whole calibration into one ledger.
+    if (cal::started_by_mpi_launcher())
+        throw std::runtime_error("this gradem was built without MPI (GRADEM_MPI=OFF or no Open MPI found): run it without mpirun, "
+                         "or rebuild with libopenmpi-dev installed");
+#endif
+    const cal::CalibrationProblem problem = load_problem(o);
+    auto model = cal::make_model(problem);
+    cal::ThreadExecutor threads(*model, problem.workers);
+    return calibrate_and_report(problem, *model, threads);
 }
 
 }  // namespace gradem::app

@@ -62,6 +62,13 @@ std::string problem_fingerprint(const CalibrationProblem& problem, const CubeMod
 CalibrationResult run_calibration(const CalibrationProblem& problem, CubeModel& model,
                                   const std::function<void(const std::string&)>& log_line,
                                   const std::function<void(const Progress&)>& progress) {
+    ThreadExecutor threads(model, problem.workers);
+    return run_calibration(problem, model, threads, log_line, progress);
+}
+
+CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeModel& model, RunExecutor& executor,
+                                  const std::function<void(const std::string&)>& log_line,
+                                  const std::function<void(const Progress&)>& progress) {
     const auto start = std::chrono::steady_clock::now();
     CalibrationResult result;
     auto log = [&](const std::string& s) {
@@ -72,10 +79,11 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, CubeModel& 
     result.fingerprint = problem_fingerprint(problem, model);
     Ledger ledger(problem.ledger, result.fingerprint, problem.describe() + model.fingerprint() + "\n");
     if (const auto rows = ledger.size()) log("ledger " + problem.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
-    // 2. Packings (cached), all sands and seeds at once on the workers.
-    model.prepare(problem.seeds, problem.workers, log);
+    // 2. Packings (made once, cached), all sands and seeds, wherever the runs will go.
+    log("runs on " + executor.describe());
+    executor.prepare(problem.seeds, log);
     const ParameterSpace space(problem.parameters, problem.base.material);
-    Evaluator evaluator(problem, space, model, ledger, model.fingerprint(), progress);
+    Evaluator evaluator(problem, space, executor, ledger, model.fingerprint(), progress);
     // 3. The mode's solves.
     std::vector<std::size_t> all;
     for (std::size_t s = 0; s < problem.sands.size(); ++s) all.push_back(s);

@@ -12,6 +12,7 @@
 #include "calibrate/cube_model.hpp"
 #include "calibrate/evaluator.hpp"
 #include "calibrate/problem.hpp"
+#include "calibrate/run_executor.hpp"
 #include "calibrate/solver.hpp"
 #include "calibrate/uncertainty.hpp"
 
@@ -39,7 +40,14 @@ struct CalibrationResult {
     std::vector<std::string> log;          ///< the milestone lines
 };
 
+/// The calibration with the runs on `problem.workers` threads of this process.
 CalibrationResult run_calibration(const CalibrationProblem& problem, CubeModel& model,
+                                  const std::function<void(const std::string&)>& log = {},
+                                  const std::function<void(const Progress&)>& progress = {});
+
+/// The calibration with the runs on `executor` (threads or MPI ranks): the same answer.
+/// `model` gives the fingerprint of the runs (the ledger's identity).
+CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeModel& model, RunExecutor& executor,
                                   const std::function<void(const std::string&)>& log = {},
                                   const std::function<void(const Progress&)>& progress = {});
 

@@ -7,6 +7,7 @@
 //                     the twin-experiment tests and for trying out a problem file in seconds.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,6 +47,10 @@ public:
     /// `log` receives one line per prepared case.
     virtual void prepare(const std::vector<std::uint64_t>& seeds, int workers,
                          const std::function<void(const std::string&)>& log) = 0;
+    /// Loads what prepare() made for these seeds (e.g. rank 0's packings from the shared
+    /// cache folder) and makes nothing: worker ranks of an MPI job call it. Throws a message
+    /// naming what it could not load. Default (nothing to share): prepare on one thread.
+    virtual void load_prepared(const std::vector<std::uint64_t>& seeds) { prepare(seeds, 1, {}); }
     /// One test; thread-safe; never throws for a simulation that fails (the status says so).
     /// `timeout_s` <= 0: no time limit.
     [[nodiscard]] virtual RunOutcome run(const RunRequest& request, double timeout_s) const = 0;

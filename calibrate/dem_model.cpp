@@ -66,6 +66,23 @@ public:
         });
     }
 
+    void load_prepared(const std::vector<std::uint64_t>& seeds) override {
+        for (std::size_t s = 0; s < curves_.size(); ++s)
+            for (std::uint64_t seed : seeds) {
+                if (packings_.count({s, seed})) continue;
+                exp::SpecimenSpec spec = base_.specimen;
+                spec.seed = seed;
+                const std::uint64_t key = exp::packing_key(curves_[s], spec);
+                const std::filesystem::path path = exp::packing_cache_path(base_.cache_dir, key);
+                std::error_code ec;
+                if (!std::filesystem::exists(path, ec))
+                    throw std::runtime_error("packing of " + names_[s] + ", seed " + std::to_string(seed) + " not found at " +
+                                             std::filesystem::absolute(path).string() +
+                                             " (the packing cache folder must be one every rank can read, e.g. on a shared file system)");
+                packings_.emplace(std::make_pair(s, seed), exp::load_packing(path, key));
+            }
+    }
+
     RunOutcome run(const RunRequest& q, double timeout_s) const override {
         const auto it = packings_.find({q.sand, q.seed});
         if (it == packings_.end()) throw std::logic_error("DemCubeModel::run: packing not prepared");

@@ -1,10 +1,7 @@
 #include "calibrate/evaluator.hpp"
 
 #include <cmath>
-#include <mutex>
 #include <nlohmann/json.hpp>
-
-#include "calibrate/thread_pool.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -15,10 +12,16 @@ double output_of(const RunOutcome& r, Quantity q) {
 
 }  // namespace
 
+Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
+                     std::string model_fingerprint, std::function<void(const Progress&)> progress)
+    : problem_(problem), space_(space), executor_(executor), ledger_(ledger), fingerprint_(std::move(model_fingerprint)),
+      progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {}
+
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
                      std::string model_fingerprint, std::function<void(const Progress&)> progress)
-    : problem_(problem), space_(space), model_(model), ledger_(ledger), fingerprint_(std::move(model_fingerprint)),
-      progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {}
+    : problem_(problem), space_(space), own_executor_(std::make_unique<ThreadExecutor>(model, problem.workers)),
+      executor_(*own_executor_), ledger_(ledger), fingerprint_(std::move(model_fingerprint)), progress_(std::move(progress)),
+      start_(std::chrono::steady_clock::now()) {}
 
 double Evaluator::seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -106,15 +109,16 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
             queue.push_back(j);
         }
     }
-    // 2. Run the rest concurrently; record each run as soon as it ends.
-    std::mutex mutex;
+    // 2. Run the rest on the executor; record each run as soon as it ends (the executor calls
+    //    back one run at a time).
     const int evaluations = static_cast<int>(history_.size() + points.size());
-    parallel_for(queue.size(), problem_.workers, [&](std::size_t k) {
+    std::vector<RunRequest> requests;
+    for (std::size_t j : queue) requests.push_back({jobs[j].sand, jobs[j].seed, jobs[j].material});
+    executor_.run(requests, problem_.timeout_s, [&](std::size_t k, const RunOutcome& outcome, const RunPlace& place) {
         Job& job = jobs[queue[k]];
-        job.outcome = model_.run({job.sand, job.seed, job.material}, problem_.timeout_s);
+        job.outcome = outcome;
         ledger_.record(job.key, problem_.sands[job.sand], job.seed, parameters_json(points[job.point]), material_key(job.material),
-                       job.outcome);
-        const std::lock_guard lock(mutex);
+                       job.outcome, place);
         job.done = true;
         used_.insert(job.key);
         ++executed_;
@@ -163,7 +167,7 @@ void Evaluator::report(int evaluations) {
     p.elapsed_s = seconds();
     p.mean_run_s = executed_ ? run_seconds_ / executed_ : 0.0;
     p.best_objective = best_objective_;
-    p.workers = problem_.workers;
+    p.workers = executor_.slots();
     progress_(p);
 }
 

@@ -1,10 +1,11 @@
 #pragma once
 // Evaluations: a parameter point run on every packing seed of the requested sands (common random
 // numbers: the same packings for every point), served from the ledger when the identical run is
-// there, otherwise run on the worker threads and recorded at once. The budget counts distinct
+// there, otherwise handed to the run executor (threads or MPI ranks) and recorded at once. The budget counts distinct
 // runs of this calibration, from the ledger or not, so a resumed calibration takes the same path.
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,7 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
+#include "calibrate/run_executor.hpp"
 
 namespace gradem::cal {
 
@@ -53,11 +55,14 @@ struct Progress {
 
 class Evaluator {
 public:
+    Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
+              std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
+    /// The runs on problem.workers threads of this process (`model` already prepared).
     Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
               std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
 
     /// Evaluates every point on `sands` (indices into problem.sands); all their runs go to the
-    /// workers together. Throws BudgetExhausted (before running anything) when the new
+    /// executor together (a batch of 20 finite-difference points fills 20 workers). Throws BudgetExhausted (before running anything) when the new
     /// distinct runs would exceed solver.max_runs.
     std::vector<Evaluation> evaluate(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands,
                                      const std::string& label);
@@ -86,7 +91,8 @@ private:
 
     const CalibrationProblem& problem_;
     const ParameterSpace& space_;
-    const CubeModel& model_;
+    std::unique_ptr<RunExecutor> own_executor_;  ///< the thread executor of the second constructor
+    RunExecutor& executor_;
     Ledger& ledger_;
     std::string fingerprint_;
     std::function<void(const Progress&)> progress_;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <sstream>
 
@@ -68,8 +69,23 @@ std::string meta_value(sqlite3* db, const std::string& key, const fs::path& file
     return s.step() == SQLITE_ROW ? s.column_text(0) : std::string();
 }
 
+/// A process killed in the middle of a commit (kill -9, a batch job's end) leaves a hot
+/// journal. SQLite rolls it back - restoring the last committed state - on the next read by a
+/// connection that may write; a read-only connection cannot, and would see no tables.
+void roll_back_interrupted_commit(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::exists(path.string() + "-journal", ec)) return;
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK) {
+        sqlite3_busy_timeout(db, 5000);
+        sqlite3_exec(db, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
+    }
+    sqlite3_close(db);
+}
+
 /// Checks an existing file read-only: an SQLite ledger of this problem, or an error.
 void check_existing(const fs::path& path, const std::string& fingerprint, const std::string& description) {
+    roll_back_interrupted_commit(path);
     sqlite3* db = nullptr;
     if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
         sqlite3_close(db);
@@ -83,7 +99,11 @@ void check_existing(const fs::path& path, const std::string& fingerprint, const 
         throw LedgerMismatch(path.string() + ": not a gradem calibration ledger (no meta table); left untouched");
     }
     const std::string found_description = meta_value(db, "problem", path);
+    const std::string schema = meta_value(db, "schema_version", path);
     sqlite3_close(db);
+    if (!schema.empty() && std::atoi(schema.c_str()) > kLedgerSchemaVersion)
+        throw LedgerMismatch(path.string() + ": ledger schema version " + schema + " is newer than this build's (" +
+                             std::to_string(kLedgerSchemaVersion) + "); left untouched - use the gradem that wrote it");
     if (found != fingerprint) {
         // Name the first line of the problem description that differs.
         std::istringstream a(found_description), b(description);
@@ -136,18 +156,22 @@ Ledger::Ledger(const fs::path& path, const std::string& fingerprint, const std::
         throw LedgerError(path.string() + ": cannot open the ledger: " + msg);
     }
     sqlite3_busy_timeout(db_, 5000);
-    if (existed) return;
+    if (existed) {
+        upgrade_schema();
+        return;
+    }
     exec(db_,
          "BEGIN;"
          "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT);"
          "CREATE TABLE runs(run_key TEXT PRIMARY KEY, sand TEXT, seed INTEGER, parameters TEXT, material TEXT,"
          " status TEXT, reason TEXT, modulus_pa REAL, peak_pa REAL, strain_at_peak REAL, poisson REAL,"
          " particles INTEGER, bonds INTEGER, steps INTEGER, wall_seconds REAL, curve TEXT, code_version TEXT,"
-         " finished_utc TEXT, sequence INTEGER);",
+         " finished_utc TEXT, sequence INTEGER, rank INTEGER, host TEXT);",
          path_);
     Statement s(db_, "INSERT INTO meta(key, value) VALUES (?1, ?2)", path_);
     for (const auto& [k, v] : {std::pair<std::string, std::string>{"problem_fingerprint", fingerprint},
-                               {"problem", description}, {"created_utc", utc_now()}, {"code_version", code_version()}}) {
+                               {"problem", description}, {"created_utc", utc_now()}, {"code_version", code_version()},
+                               {"schema_version", std::to_string(kLedgerSchemaVersion)}}) {
         s.text(1, k);
         s.text(2, v);
         if (s.step() != SQLITE_DONE) throw LedgerError(path_.string() + ": SQLite: " + sqlite3_errmsg(db_));
@@ -157,6 +181,23 @@ Ledger::Ledger(const fs::path& path, const std::string& fingerprint, const std::
 }
 
 Ledger::~Ledger() { sqlite3_close(db_); }
+
+void Ledger::upgrade_schema() {
+    // Schema 1 -> 2: where each run ran (rank, host). Old rows keep NULL.
+    bool has_rank = false;
+    {
+        Statement s(db_, "SELECT name FROM pragma_table_info('runs')", path_);
+        while (s.step() == SQLITE_ROW) has_rank = has_rank || s.column_text(0) == "rank";
+    }
+    if (has_rank) return;
+    exec(db_,
+         "BEGIN;"
+         "ALTER TABLE runs ADD COLUMN rank INTEGER;"
+         "ALTER TABLE runs ADD COLUMN host TEXT;"
+         "INSERT OR REPLACE INTO meta(key, value) VALUES ('schema_version', '2');"
+         "COMMIT;",
+         path_);
+}
 
 std::optional<RunOutcome> Ledger::find(const std::string& run_key) const {
     const std::lock_guard lock(mutex_);
@@ -182,11 +223,14 @@ std::optional<RunOutcome> Ledger::find(const std::string& run_key) const {
 }
 
 void Ledger::record(const std::string& run_key, const std::string& sand, std::uint64_t seed,
-                    const std::string& parameters_json, const std::string& material, const RunOutcome& o) {
+                    const std::string& parameters_json, const std::string& material, const RunOutcome& o,
+                    const RunPlace& place) {
     const std::lock_guard lock(mutex_);
     Statement s(db_,
-                "INSERT OR REPLACE INTO runs VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16,"
-                " ?17, ?18, (SELECT COUNT(*) FROM runs))",
+                "INSERT OR REPLACE INTO runs(run_key, sand, seed, parameters, material, status, reason, modulus_pa, peak_pa,"
+                " strain_at_peak, poisson, particles, bonds, steps, wall_seconds, curve, code_version, finished_utc, sequence,"
+                " rank, host) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16,"
+                " ?17, ?18, (SELECT COUNT(*) FROM runs), ?19, ?20)",
                 path_);
     s.text(1, run_key);
     s.text(2, sand);
@@ -206,6 +250,8 @@ void Ledger::record(const std::string& run_key, const std::string& sand, std::ui
     s.text(16, curve_text(o));
     s.text(17, code_version());
     s.text(18, utc_now());
+    s.integer(19, place.rank);
+    s.text(20, place.host);
     if (s.step() != SQLITE_DONE) throw LedgerError(path_.string() + ": SQLite: " + sqlite3_errmsg(db_));
 }
 

@@ -14,7 +14,10 @@
 //        material TEXT, status TEXT, reason TEXT, modulus_pa REAL, peak_pa REAL,
 //        strain_at_peak REAL, poisson REAL, particles INTEGER, bonds INTEGER, steps INTEGER,
 //        wall_seconds REAL, curve TEXT ("strain stress;..."), code_version TEXT,
-//        finished_utc TEXT, sequence INTEGER)
+//        finished_utc TEXT, sequence INTEGER, rank INTEGER, host TEXT)
+// rank and host (where the run ran: MPI rank, 0 for threads) came with schema 2 (meta
+// schema_version); a schema-1 ledger gains the two columns when opened (its rows keep NULL
+// there); a ledger of a newer schema is refused with a message.
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -22,6 +25,7 @@
 #include <string>
 
 #include "calibrate/cube_model.hpp"
+#include "calibrate/run_executor.hpp"
 
 struct sqlite3;
 
@@ -39,6 +43,9 @@ public:
 /// The code version stored with every run (project version and git commit at build time).
 const char* code_version();
 
+/// The ledger layout this build writes (meta schema_version; 1 when absent).
+inline constexpr int kLedgerSchemaVersion = 2;
+
 class Ledger {
 public:
     /// Opens (or creates) `path` for the problem with this fingerprint; `description` is kept
@@ -50,11 +57,13 @@ public:
 
     [[nodiscard]] std::optional<RunOutcome> find(const std::string& run_key) const;
     void record(const std::string& run_key, const std::string& sand, std::uint64_t seed,
-                const std::string& parameters_json, const std::string& material, const RunOutcome& outcome);
+                const std::string& parameters_json, const std::string& material, const RunOutcome& outcome,
+                const RunPlace& place = {});
     [[nodiscard]] std::int64_t size() const;
     [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
 private:
+    void upgrade_schema();
     std::filesystem::path path_;
     sqlite3* db_ = nullptr;
     mutable std::mutex mutex_;

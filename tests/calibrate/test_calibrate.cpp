@@ -159,7 +159,9 @@ private:
 std::int64_t ledger_rows(const fs::path& path) {
     sqlite3* db = nullptr;
     std::int64_t n = -1;
-    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+    // Read-write (no create): after kill -9 mid-commit only a writer may roll the hot journal back.
+    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK) {
+        sqlite3_busy_timeout(db, 2000);
         sqlite3_stmt* s = nullptr;
         if (sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM runs", -1, &s, nullptr) == SQLITE_OK && sqlite3_step(s) == SQLITE_ROW)
             n = sqlite3_column_int64(s, 0);
