@@ -55,6 +55,10 @@ RunStatus World::step() {
         forces_current_ = true;
         reset_energy_reference_ = true;
     }
+    // One dt per step (issue 9 item 4): the increments of this step are computed with the dt
+    // the particles and walls moved with, even if the rebuild below picks a new automatic dt
+    // (that one takes effect from the next step's motion).
+    const double step_dt = dt_;
     const IntegrationSums sums = integrate();
     double wall_work = 0.0;
     move_walls(wall_work);
@@ -74,11 +78,11 @@ RunStatus World::step() {
     }
     check_divergence(sums);
     ++step_;
-    time_ += dt_;
+    time_ += step_dt;
 
     if (needs_rebuild()) rebuild_neighbors();
     profile_.neighbors += clock.lap();
-    evaluate_forces(dt_, clock);
+    evaluate_forces(step_dt, clock);
     gather_forces();
     profile_.integrate += clock.lap();
     return status_;
