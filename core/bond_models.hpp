@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/parallel_bond_law.hpp"
+#include "core/soft_bond_law.hpp"
 
 namespace gradem {
 
@@ -15,7 +16,7 @@ template <class Visitor>
 decltype(auto) visit_bond_law(BondModel model, Visitor&& visitor) {
     switch (model) {
         case BondModel::parallel_bond: return visitor(ParallelBondLaw{});
-        case BondModel::soft_bond:
+        case BondModel::soft_bond: return visitor(SoftBondLaw{});
         case BondModel::flat_joint:
             throw std::invalid_argument(std::string("bond model ") + bond_model_name(model) +
                                         " is not implemented yet");
