@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/flat_joint_law.hpp"
 #include "core/parallel_bond_law.hpp"
 #include "core/soft_bond_law.hpp"
 
@@ -17,9 +18,7 @@ decltype(auto) visit_bond_law(BondModel model, Visitor&& visitor) {
     switch (model) {
         case BondModel::parallel_bond: return visitor(ParallelBondLaw{});
         case BondModel::soft_bond: return visitor(SoftBondLaw{});
-        case BondModel::flat_joint:
-            throw std::invalid_argument(std::string("bond model ") + bond_model_name(model) +
-                                        " is not implemented yet");
+        case BondModel::flat_joint: return visitor(FlatJointLaw{});
     }
     throw std::invalid_argument("visit_bond_law: unknown BondModel");
 }

@@ -67,7 +67,7 @@ TEST_CASE("state after N steps hashes the same with 1, 2 and 3 threads", "[core]
 }
 
 TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "[core][determinism]") {
-    for (BondModel model : {BondModel::soft_bond}) {
+    for (BondModel model : {BondModel::soft_bond, BondModel::flat_joint}) {
         INFO(bond_model_name(model));
         std::size_t b1 = 0, b2 = 0, b3 = 0;
         const std::uint64_t h1 = run_with_threads(1, b1, model);
