@@ -210,3 +210,45 @@ TEST_CASE("soft bonds: damped, frictional compression between platens closes the
     CHECK(e.damping > 0.0);
     CHECK(std::fabs(e.balance_error()) < 1.0e-3 * e.boundary_work);
 }
+
+TEST_CASE("soft bond in shear: breaks where tau = c - sigma tan(phi), as the parallel bond",
+          "[core][soft_bond]") {
+    const double cohesion = 1.0e6, v = 0.93e-3;
+    for (double phi_deg : {0.0, 30.0}) {
+        BondParams bp = soft_params();
+        bp.tensile_strength_mean = 1.0e12;
+        bp.cohesion_mean = cohesion;
+        bp.friction_angle_deg = phi_deg;
+        BondRig rig(bp);
+        rig.set_motion({-v, 0, 0}, {});
+        for (int s = 0; s < 300; ++s) rig.world.step();
+        const double sigma = rig.axial_stress();  // < 0: compression, never damages
+        const double tau_c = cohesion - sigma * std::tan(phi_deg * kPi / 180.0);
+        const int predicted = static_cast<int>(std::ceil(tau_c / (rig.stiffness.shear * v * rig.dt)));
+        rig.set_motion({0, v, 0}, {});
+        int broke = 0;
+        for (int s = 1; s <= 100000 && rig.intact(); ++s) {
+            rig.world.step();
+            if (!rig.intact()) broke = s;
+        }
+        CHECK(broke == predicted);
+        CHECK(rig.bond().state == BondState::broken_shear);
+    }
+}
+
+TEST_CASE("every bond law sets the time step from the undamaged disc stiffness",
+          "[core][soft_bond][flat_joint]") {
+    auto critical = [](BondModel model) {
+        World world(simple_cubic(3, 1.0e-3, 1.0e-6), frictionless(1.0e9), undamped());
+        BondParams bp;
+        bp.model = model;
+        bp.effective_modulus = 5.0e9;
+        world.install_bonds(bp, 2.0e-6);
+        return world.critical_time_step();
+    };
+    World bare(simple_cubic(3, 1.0e-3, 1.0e-6), frictionless(1.0e9), undamped());
+    const double pb = critical(BondModel::parallel_bond);
+    CHECK(pb < 0.5 * bare.critical_time_step());  // the bonds dominate
+    CHECK(critical(BondModel::soft_bond) == pb);
+    CHECK(critical(BondModel::flat_joint) == pb);
+}
