@@ -1,32 +1,46 @@
 #pragma once
-// Parallel bond (Potyondy & Cundall 2004, §2.2 and eqs. for the bond periphery stresses; PFC
-// linearpbond). A bond is a disc of cement of radius R̄ = λ̄ min(R_A, R_B) with area Ā = π R̄²,
-// moment of inertia Ī = π R̄⁴/4 and polar moment J̄ = π R̄⁴/2, and stiffness per unit area
-// k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n/κ̄. Sign convention: the bond normal force is TENSION
-// positive; shear force, twist and bending moments are stored as acting on B (A gets the
-// opposite). Incremental update per step (physics.md §2.3):
-//     F̄_n += k̄_n Ā dU_n,  F̄_s = rot(F̄_s) - k̄_s Ā dU_s,
-//     M̄_t -= k̄_s J̄ dθ_t,  M̄_b = rot(M̄_b) - k̄_n Ī dθ_b.
-// Peak stresses at the periphery (beam theory, β̄ = moment-contribution factor):
-//     σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī,   τ̄ = |F̄_s|/Ā + β̄ |M̄_t| R̄/J̄.
-// Failure: σ̄ >= σ̄_c -> tension; else τ̄ >= τ̄_c = c̄ - σ tan φ̄ with σ = min(F̄_n/Ā, σ̄_c)
-// -> shear. A broken bond carries nothing and is never re-formed.
+// What every bond law shares (issue 9): the bond record, the bond disc geometry and stiffness,
+// and the interface of a law kernel. The laws themselves are pure kernels, one header each:
+//     core/parallel_bond_law.hpp  (Potyondy & Cundall 2004; PFC linearpbond)
+//     core/soft_bond_law.hpp      (PFC softbond semantics, models.md §1)
+//     core/flat_joint_law.hpp     (Potyondy 2012 flat joint, models.md §3)
+// and core/bond_models.hpp holds the one table that maps BondModel to its kernel.
+//
+// Geometry (physics.md §2.1-2.2): a bond is a disc of cement of radius R̄ = λ̄ min(R_A, R_B) with
+// area Ā = π R̄², moment of inertia Ī = π R̄⁴/4 and polar moment J̄ = π R̄⁴/2, and stiffness per
+// unit area k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n/κ̄. Sign convention: the bond normal force is
+// TENSION positive; shear force, twist and bending moments are stored as acting on B (A gets
+// the opposite).
+//
+// Law kernel interface (a struct with static members; see ParallelBondLaw for the reference):
+//     kModel                          the BondModel it implements
+//     Context context(params, track)  per-step constants (tan φ̄, element tables, ...)
+//     side_size(params)               doubles of per-bond side state (0: none, no memory used)
+//     install(params, normal, side)   initialises the side state of a new bond
+//     step(ctx, bond, side, section, stiffness, kinematics, breaks) -> BondStepResult
+//     time_step_stiffness(section, stiffness, r) -> TimeStepStiffness (undamaged)
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/pair_kinematics.hpp"
+#include "core/params.hpp"
 
 namespace gradem {
 
 /// PFC pb_state codes: 0 never bonded, 1 broken in tension, 2 broken in shear, 3 bonded.
 enum class BondState : std::uint8_t { none = 0, broken_tension = 1, broken_shear = 2, intact = 3 };
 
-/// One parallel bond. Stiffnesses come from the World's BondParams (they depend only on the
-/// radii and Ē*); strengths are per bond (drawn at installation).
+/// One bond. Stiffnesses come from the World's BondParams (they depend only on the radii and
+/// Ē*); strengths are per bond (drawn at installation). The force fields are what the bond
+/// TRANSMITS (for the soft bond: the damaged forces; for the flat joint: the resultant of its
+/// elements about the contact point). Law-specific state lives in the World's side array.
 struct ParallelBond {
     std::int32_t i = -1, j = -1;   ///< particle indices, i < j
     std::int32_t slot = -1;        ///< index of the pair in the World's interaction list
     BondState state = BondState::intact;
+    BondModel model = BondModel::parallel_bond;  ///< the law this bond follows
     double tensile_strength = 0.0; ///< σ̄_c [Pa]
     double cohesion = 0.0;         ///< c̄ [Pa]
     double normal_force = 0.0;     ///< F̄_n, tension positive [N]
@@ -72,30 +86,35 @@ struct BondStress {
     double axial = 0.0;    ///< σ = F̄_n/Ā [Pa]
 };
 
-inline BondStress bond_peak_stress(const ParallelBond& b, const BondSection& s,
-                                   double moment_factor) {
-    BondStress out;
-    out.axial = b.normal_force * s.inv_area;
-    out.tensile = out.axial + moment_factor * norm(b.bend_moment) * s.radius_over_inertia;
-    out.shear = norm(b.shear_force) * s.inv_area +
-                moment_factor * std::fabs(b.twist_moment) * s.radius_over_polar;
-    return out;
-}
+/// A break reported by a law kernel: the whole bond (element = -1) or one element of it.
+struct BondBreak {
+    BondState mode = BondState::broken_tension;
+    std::int32_t element = -1;  ///< flat-joint element index, -1 for the whole bond
+    Vec3 offset;                ///< from the contact point to the crack centre [m]
+    double tensile_stress = 0.0;  ///< [Pa] at break
+    double shear_stress = 0.0;    ///< [Pa] at break
+};
 
-/// τ̄_c = c̄ - σ tan φ̄, with σ capped at σ̄_c (PFC linearpbond).
-inline double bond_shear_strength(const ParallelBond& b, double axial_stress, double tan_phi) {
-    const double sigma = axial_stress < b.tensile_strength ? axial_stress : b.tensile_strength;
-    return b.cohesion - sigma * tan_phi;
-}
+/// What one step of a law kernel produced for one bond.
+struct BondStepResult {
+    BondState failure = BondState::intact;  ///< != intact: the bond broke as a whole this step
+    Vec3 force_j;       ///< force on j [N] (zero once broken)
+    Vec3 moment_j;      ///< moment on j about the contact point, lever arm excluded [N m]
+    double stored = 0.0;    ///< elastic energy after the step (if tracked) [J]
+    double released = 0.0;  ///< stored energy lost by breaks this step [J]
+    double damage = 0.0;    ///< energy dissipated by damage (softening) this step [J]
+    double slip = 0.0;      ///< energy dissipated by friction of broken elements this step [J]
+};
 
-/// Failure mode for the current stresses: intact, broken_tension or broken_shear.
-inline BondState bond_failure(const ParallelBond& b, const BondStress& s, double tan_phi) {
-    if (s.tensile >= b.tensile_strength) return BondState::broken_tension;
-    if (s.shear >= bond_shear_strength(b, s.axial, tan_phi)) return BondState::broken_shear;
-    return BondState::intact;
-}
+/// Stiffness a bond adds to its particles for the critical time step (undamaged values).
+struct TimeStepStiffness {
+    double translational = 0.0;  ///< [N/m]
+    double rotational = 0.0;     ///< [N m/rad], for a particle of radius r
+};
 
-/// Advances the bond forces and moments by one step of relative motion.
+/// Advances F̄_n, F̄_s, M̄_t, M̄_b by one step of relative motion (physics.md §2.3):
+///     F̄_n += k̄_n Ā dU_n,  F̄_s = rot(F̄_s) - k̄_s Ā dU_s,
+///     M̄_t -= k̄_s J̄ dθ_t,  M̄_b = rot(M̄_b) - k̄_n Ī dθ_b.
 inline void update_bond_forces(ParallelBond& b, const BondSection& s, const BondStiffness& k,
                                const PairKinematics& kin) {
     b.shear_force = rotate_into_plane(b.shear_force, kin);
@@ -106,16 +125,20 @@ inline void update_bond_forces(ParallelBond& b, const BondSection& s, const Bond
     b.bend_moment -= (k.normal * s.inertia) * kin.bend_angle;
 }
 
-/// Breaks the bond: forces and moments vanish at once (PFC linearpbond); never re-formed.
-inline void release_bond(ParallelBond& b, BondState mode) {
-    b.state = mode;
-    b.normal_force = 0.0;
-    b.shear_force = {};
-    b.twist_moment = 0.0;
-    b.bend_moment = {};
+/// Peak stresses at the periphery (beam theory, β̄ = moment-contribution factor):
+///     σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī,   τ̄ = |F̄_s|/Ā + β̄ |M̄_t| R̄/J̄.
+inline BondStress bond_peak_stress(const ParallelBond& b, const BondSection& s,
+                                   double moment_factor) {
+    BondStress out;
+    out.axial = b.normal_force * s.inv_area;
+    out.tensile = out.axial + moment_factor * norm(b.bend_moment) * s.radius_over_inertia;
+    out.shear = norm(b.shear_force) * s.inv_area +
+                moment_factor * std::fabs(b.twist_moment) * s.radius_over_polar;
+    return out;
 }
 
-/// Elastic energy stored in the bond [J].
+/// Elastic energy of a bond disc carrying these forces [J]:
+///     ½ (F̄_n²/Ā + |M̄_b|²/Ī)/k̄_n + ½ (|F̄_s|²/Ā + M̄_t²/J̄)/k̄_s.
 inline double bond_strain_energy(const ParallelBond& b, const BondSection& s,
                                  const BondStiffness& k) {
     // 1/I = (R/I)/R and 1/J = 1/(2I): one division for the four compliances.
@@ -127,12 +150,29 @@ inline double bond_strain_energy(const ParallelBond& b, const BondSection& s,
     return 0.5 * (normal_part / k.normal + shear_part / k.shear);
 }
 
-/// Force on j [N] and moment on j [N m] exerted by an intact bond with normal n.
+/// Breaks the bond: forces and moments vanish at once; never re-formed.
+inline void release_bond(ParallelBond& b, BondState mode) {
+    b.state = mode;
+    b.normal_force = 0.0;
+    b.shear_force = {};
+    b.twist_moment = 0.0;
+    b.bend_moment = {};
+}
+
+/// Force on j [N] and moment on j [N m] exerted by a bond with normal n.
 inline Vec3 bond_force_on_j(const ParallelBond& b, const Vec3& n) {
     return b.shear_force - b.normal_force * n;
 }
 inline Vec3 bond_moment_on_j(const ParallelBond& b, const Vec3& n) {
     return b.bend_moment + b.twist_moment * n;
+}
+
+/// Time-step stiffness of an undamaged bond disc (PFC "Timestep Determination"):
+/// translational max(k̄_n, k̄_s) Ā, rotational k̄_s Ā r² + k̄_n Ī + k̄_s J̄.
+inline TimeStepStiffness disc_time_step_stiffness(const BondSection& s, const BondStiffness& k,
+                                                  double r) {
+    return {std::max(k.normal, k.shear) * s.area,
+            k.shear * s.area * r * r + k.normal * s.inertia + k.shear * s.polar};
 }
 
 }  // namespace gradem

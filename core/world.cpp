@@ -8,9 +8,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/bond_models.hpp"
 #include "core/contact_law.hpp"
 #include "core/parallel.hpp"
-#include "core/random.hpp"
 
 namespace gradem {
 
@@ -48,34 +48,6 @@ void World::remove_wall(std::int32_t index) {
     wall_contacts_.clear();  // indices shift: start the wall histories afresh
     rebuild_needed_ = true;
     forces_current_ = false;
-}
-
-std::size_t World::install_bonds(const BondParams& params, double max_gap) {
-    require_valid(params.invalid_reason());
-    if (!std::isfinite(max_gap))
-        throw std::invalid_argument("install_bonds: max_gap is not finite");
-    bond_params_ = params;
-    std::vector<ParticlePair> found;
-    search_->find_pairs(particles_.position, particles_.radius, std::max(max_gap, 0.0), found);
-    bonds_.clear();
-    for (const ParticlePair& p : found) {
-        const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
-        const double gap = norm(particles_.position[j] - particles_.position[i]) -
-                           particles_.radius[i] - particles_.radius[j];
-        if (gap > max_gap) continue;
-        ParallelBond b;
-        b.i = p.i;
-        b.j = p.j;
-        const std::uint64_t key = (static_cast<std::uint64_t>(p.i) << 32) | static_cast<std::uint32_t>(p.j);
-        b.tensile_strength = truncated_normal_positive(
-            params.tensile_strength_mean, params.tensile_strength_std, params.seed, key);
-        b.cohesion = truncated_normal_positive(params.cohesion_mean, params.cohesion_std,
-                                               params.seed ^ 0x5bd1e995ull, key);
-        bonds_.push_back(b);
-    }
-    rebuild_needed_ = true;
-    forces_current_ = false;
-    return bonds_.size();
 }
 
 void World::set_bond_stiffness(double effective_modulus, double stiffness_ratio) {
@@ -140,6 +112,10 @@ double World::time_step() {
 double World::critical_time_step() {
     if (rebuild_needed_) rebuild_neighbors();
     const auto n = static_cast<std::int64_t>(particles_.size());
+    // The bond law's undamaged stiffness (one law per World: resolved once, outside the loop).
+    const auto bond_time_step_stiffness = visit_bond_law(bond_params_.model, [](auto law) {
+        return &decltype(law)::time_step_stiffness;
+    });
     std::vector<double> block_min(static_cast<std::size_t>(block_count(n)),
                                   std::numeric_limits<double>::infinity());
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t b) {
@@ -160,8 +136,9 @@ double World::critical_time_step() {
                     const BondSection s = bond_section(bond_params_.radius_multiplier, ra, rb);
                     const BondStiffness k = bond_stiffness(bond_params_.effective_modulus,
                                                            bond_params_.stiffness_ratio, ra, rb);
-                    k_tran += std::max(k.normal, k.shear) * s.area;
-                    k_rot += k.shear * s.area * ri * ri + k.normal * s.inertia + k.shear * s.polar;
+                    const TimeStepStiffness t = bond_time_step_stiffness(s, k, ri);
+                    k_tran += t.translational;
+                    k_rot += t.rotational;
                 }
             }
             for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
@@ -242,7 +219,7 @@ std::size_t World::memory_bytes() const {
     return bytes(p.position) + bytes(p.velocity) + bytes(p.spin) + bytes(p.force) +
            bytes(p.torque) + bytes(p.radius) + bytes(p.mass) + bytes(p.inertia) + bytes(p.flags) +
            bytes(pairs_) + bytes(pair_out_) + bytes(incidence_start_) + bytes(incidence_) +
-           bytes(bonds_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
+           bytes(bonds_) + bytes(bond_side_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
            bytes(position_at_rebuild_);
 }
 
@@ -268,6 +245,7 @@ std::uint64_t World::state_hash() const {
         fnv_mix(h, &b.shear_force, sizeof(Vec3));
         fnv_mix(h, &b.state, sizeof(b.state));
     }
+    if (!bond_side_.empty()) fnv_mix(h, bond_side_.data(), bond_side_.size() * sizeof(double));
     return h;
 }
 

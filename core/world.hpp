@@ -3,7 +3,8 @@
 // list of phases of one cycle (as PFC and Box2D's b2World_Step do it):
 //   1. neighbours  - rebuild the Verlet pair list when particles moved more than half the skin;
 //   2. contacts    - linear contact law for every pair, into that pair's own output slot;
-//   3. bonds       - parallel-bond law for every intact bond, added into its pair's slot;
+//   3. bonds       - the bond law (BondParams::model; core/bond_models.hpp) for every intact
+//                    bond, added into its pair's slot;
 //   4. walls       - linear contact with each platen, into per-wall-contact slots;
 //   5. gather      - each particle sums its slots in a fixed order into force/torque;
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
@@ -13,6 +14,7 @@
 // is bitwise identical for any number of OpenMP threads. No atomics on forces.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,8 +36,9 @@ public:
     // --- set-up -------------------------------------------------------------------------
     std::int32_t add_wall(Wall wall);
     void remove_wall(std::int32_t index);
-    /// Installs a parallel bond at every pair with gap <= max_gap [m] (PFC `bond gap`), at zero
-    /// force in the current geometry, replacing any existing bonds. Returns the bond count.
+    /// Installs a bond of law params.model at every pair with gap <= max_gap [m] (PFC `bond
+    /// gap`), at zero force in the current geometry, replacing any existing bonds. Returns the
+    /// bond count.
     std::size_t install_bonds(const BondParams& params, double max_gap);
     /// Changes bond stiffness parameters of the existing bonds (strengths stay as drawn).
     void set_bond_stiffness(double effective_modulus, double stiffness_ratio);
@@ -59,6 +62,11 @@ public:
     // --- queries ------------------------------------------------------------------------
     [[nodiscard]] const ParticleSet& particles() const { return particles_; }
     [[nodiscard]] const std::vector<ParallelBond>& bonds() const { return bonds_; }
+    /// Law-specific side state of bond k (empty for the parallel bond); decode it with the
+    /// law's header (soft_bond_state(), flat_joint_element(), ...).
+    [[nodiscard]] std::span<const double> bond_side_state(std::size_t k) const {
+        return {bond_side_.data() + k * bond_side_stride_, bond_side_stride_};
+    }
     [[nodiscard]] const std::vector<Wall>& walls() const { return walls_; }
     [[nodiscard]] const EnergyLedger& energy() const { return energy_; }
     [[nodiscard]] const std::vector<BreakEvent>& break_events() const { return breaks_; }
@@ -118,6 +126,8 @@ private:
     std::vector<std::int32_t> incidence_start_;
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
+    std::vector<double> bond_side_;      ///< per-bond law state, bond_side_stride_ doubles each
+    std::size_t bond_side_stride_ = 0;   ///< 0 for laws without side state (parallel bond)
     std::vector<Wall> walls_;
     std::vector<WallContact> wall_contacts_;
     std::vector<WallOutput> wall_out_;
@@ -142,7 +152,7 @@ private:
 
     /// Energy terms of the latest force evaluation.
     struct ForceEvaluation {
-        double contact_strain = 0, bond_strain = 0, slip = 0, released = 0;
+        double contact_strain = 0, bond_strain = 0, slip = 0, released = 0, damage = 0;
     };
     ForceEvaluation last_eval_;
     bool forces_current_ = false;
@@ -153,7 +163,19 @@ private:
     [[nodiscard]] bool needs_rebuild() const;
     void evaluate_forces(double increment_dt, class Stopwatch& clock);
     void compute_contacts(double dt, double& strain, double& slip);
-    void compute_bonds(double dt, double& strain, double& released);
+    struct BondEnergy {
+        double stored = 0, released = 0, damage = 0, slip = 0;
+        BondEnergy& operator+=(const BondEnergy& o) {
+            stored += o.stored;
+            released += o.released;
+            damage += o.damage;
+            slip += o.slip;
+            return *this;
+        }
+    };
+    BondEnergy compute_bonds(double dt);
+    template <class Law>
+    BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);
     struct IntegrationSums {
         double kinetic = 0, damping = 0, boundary = 0, max_disp2 = 0;

@@ -55,6 +55,10 @@ RunStatus World::step() {
         forces_current_ = true;
         reset_energy_reference_ = true;
     }
+    // One dt per step (issue 9 item 4): the increments of this step are computed with the dt
+    // the particles and walls moved with, even if the rebuild below picks a new automatic dt
+    // (that one takes effect from the next step's motion).
+    const double step_dt = dt_;
     const IntegrationSums sums = integrate();
     double wall_work = 0.0;
     move_walls(wall_work);
@@ -65,6 +69,7 @@ RunStatus World::step() {
     energy_.strain_bond = last_eval_.bond_strain;
     energy_.friction += last_eval_.slip;
     energy_.bond_break += last_eval_.released;
+    energy_.bond_damage += last_eval_.damage;
     energy_.damping += sums.damping;
     energy_.boundary_work += sums.boundary + wall_work;
     if (reset_energy_reference_) {
@@ -73,11 +78,11 @@ RunStatus World::step() {
     }
     check_divergence(sums);
     ++step_;
-    time_ += dt_;
+    time_ += step_dt;
 
     if (needs_rebuild()) rebuild_neighbors();
     profile_.neighbors += clock.lap();
-    evaluate_forces(dt_, clock);
+    evaluate_forces(step_dt, clock);
     gather_forces();
     profile_.integrate += clock.lap();
     return status_;
@@ -88,12 +93,15 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
     double contact_slip = 0, wall_strain = 0, wall_slip = 0;
     compute_contacts(increment_dt, e.contact_strain, contact_slip);
     profile_.contacts += clock.lap();
-    compute_bonds(increment_dt, e.bond_strain, e.released);
+    const BondEnergy bond = compute_bonds(increment_dt);
+    e.bond_strain = bond.stored;
+    e.released = bond.released;
+    e.damage = bond.damage;
     profile_.bonds += clock.lap();
     compute_wall_contacts(increment_dt, wall_strain, wall_slip);
     profile_.walls += clock.lap();
     e.contact_strain += wall_strain;
-    e.slip = contact_slip + wall_slip;
+    e.slip = contact_slip + wall_slip + bond.slip;
     last_eval_ = e;
 }
 
@@ -132,52 +140,6 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
     const EnergyPair total = ordered_sum(partial);
     strain = total.stored;
     slip = total.dissipated;
-}
-
-// Phase 3: parallel bonds, added into their pair's slot. Breaks are logged per thread and
-// merged in bond order, so the event list is the same for any thread count.
-void World::compute_bonds(double dt, double& strain, double& released) {
-    const auto nb = static_cast<std::int64_t>(bonds_.size());
-    std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(nb)));
-    std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
-    const double tan_phi = std::tan(bond_params_.friction_angle_deg * kPi / 180.0);
-    const bool track = sim_.track_energy;
-    for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
-        EnergyPair e;
-        for (std::int64_t k = begin; k < end; ++k) {
-            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
-            if (b.state != BondState::intact) continue;
-            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-            const PairState s{particles_.position[i], particles_.position[j],
-                              particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
-                              particles_.spin[j], particles_.radius[i], particles_.radius[j]};
-            const PairKinematics kin = pair_kinematics(s, dt);
-            const BondSection sec = bond_section(bond_params_.radius_multiplier, s.ra, s.rb);
-            const BondStiffness stiff = bond_stiffness(bond_params_.effective_modulus,
-                                                       bond_params_.stiffness_ratio, s.ra, s.rb);
-            update_bond_forces(b, sec, stiff, kin);
-            const BondStress stress = bond_peak_stress(b, sec, bond_params_.moment_factor);
-            const BondState failure = bond_failure(b, stress, tan_phi);
-            if (failure != BondState::intact) {
-                if (track) e.dissipated += bond_strain_energy(b, sec, stiff);
-                broken[static_cast<std::size_t>(blk)].push_back(
-                    {step_, time_, static_cast<std::int32_t>(k), b.i, b.j, failure,
-                     s.xa + kin.arm_a, kin.normal, sec.radius, stress.tensile, stress.shear});
-                release_bond(b, failure);
-                continue;
-            }
-            if (track) e.stored += bond_strain_energy(b, sec, stiff);
-            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
-            const Vec3 f = bond_force_on_j(b, kin.normal);
-            out.force_j += f;
-            out.torque_j += cross(kin.arm_b, f) + bond_moment_on_j(b, kin.normal);
-        }
-        partial[static_cast<std::size_t>(blk)] = e;
-    });
-    for (auto& list : broken) breaks_.insert(breaks_.end(), list.begin(), list.end());
-    const EnergyPair total = ordered_sum(partial);
-    strain = total.stored;
-    released = total.dissipated;
 }
 
 // Phase 4: particle-wall contacts (linear, ball-facet stiffness), the wall playing particle A.

@@ -16,22 +16,23 @@ enum class RunStatus : std::uint8_t { running, diverged };
 struct EnergyLedger {
     double kinetic = 0.0;        ///< ½ m v(t-½).v(t+½) + ½ I w.w: the leap-frog invariant [J]
     double strain_contact = 0.0; ///< linear springs, grain-grain and grain-wall [J]
-    double strain_bond = 0.0;    ///< parallel bonds [J]
+    double strain_bond = 0.0;    ///< bonds [J]
     double damping = 0.0;        ///< dissipated by local damping, cumulative, >= 0 [J]
     double friction = 0.0;       ///< dissipated by Coulomb slip, cumulative, >= 0 [J]
     double bond_break = 0.0;     ///< strain energy released by broken bonds, cumulative [J]
+    double bond_damage = 0.0;    ///< dissipated by bond softening (soft bond), cumulative [J]
     double boundary_work = 0.0;  ///< work done on the particles by walls and prescribed particles [J]
     double reference = 0.0;      ///< total at the first step after the latest set-up change
 
     [[nodiscard]] double total() const {
-        return kinetic + strain_contact + strain_bond + damping + friction + bond_break -
-               boundary_work;
+        return kinetic + strain_contact + strain_bond + damping + friction + bond_break +
+               bond_damage - boundary_work;
     }
     /// total() - reference: zero for an exact integrator.
     [[nodiscard]] double balance_error() const { return total() - reference; }
 };
 
-/// A bond break: one crack (physics.md §8).
+/// A bond break: one crack (physics.md §8). Flat joints log one event per element break.
 struct BreakEvent {
     std::int64_t step = 0;
     double time = 0.0;          ///< [s]
@@ -42,6 +43,7 @@ struct BreakEvent {
     double bond_radius = 0.0;   ///< R̄ [m]
     double tensile_stress = 0.0;  ///< σ̄ at break [Pa]
     double shear_stress = 0.0;    ///< τ̄ at break [Pa]
+    std::int32_t element = -1;    ///< flat-joint element that broke, -1: the whole bond
 };
 
 /// Wall-clock seconds spent per phase, cumulative.

@@ -1,0 +1,66 @@
+#pragma once
+// Parallel bond (Potyondy & Cundall 2004, §2.2; PFC linearpbond; physics.md §2). Elastic disc
+// updated incrementally (update_bond_forces in bond_law.hpp); peak periphery stresses
+//     σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī,   τ̄ = |F̄_s|/Ā + β̄ |M̄_t| R̄/J̄.
+// Failure: σ̄ >= σ̄_c -> tension; else τ̄ >= τ̄_c = c̄ - σ tan φ̄ with σ = min(F̄_n/Ā, σ̄_c)
+// -> shear. A broken bond carries nothing and is never re-formed. No side state.
+#include <cmath>
+
+#include "core/bond_law.hpp"
+
+namespace gradem {
+
+/// τ̄_c = c̄ - σ tan φ̄, with σ capped at σ̄_c (PFC linearpbond).
+inline double bond_shear_strength(const ParallelBond& b, double axial_stress, double tan_phi) {
+    const double sigma = axial_stress < b.tensile_strength ? axial_stress : b.tensile_strength;
+    return b.cohesion - sigma * tan_phi;
+}
+
+/// Failure mode for the current stresses: intact, broken_tension or broken_shear.
+inline BondState bond_failure(const ParallelBond& b, const BondStress& s, double tan_phi) {
+    if (s.tensile >= b.tensile_strength) return BondState::broken_tension;
+    if (s.shear >= bond_shear_strength(b, s.axial, tan_phi)) return BondState::broken_shear;
+    return BondState::intact;
+}
+
+struct ParallelBondLaw {
+    static constexpr BondModel kModel = BondModel::parallel_bond;
+
+    struct Context {
+        double tan_phi = 0.0;        ///< tan φ̄ [-]
+        double moment_factor = 1.0;  ///< β̄ [-]
+        bool track = true;           ///< compute energies
+    };
+    static Context context(const BondParams& p, bool track) {
+        return {std::tan(p.friction_angle_deg * kPi / 180.0), p.moment_factor, track};
+    }
+    static std::size_t side_size(const BondParams&) { return 0; }
+    static void install(const BondParams&, const Vec3&, double*) {}
+
+    static BondStepResult step(const Context& c, ParallelBond& b, double*, const BondSection& sec,
+                               const BondStiffness& stiff, const PairKinematics& kin,
+                               std::vector<BondBreak>& breaks) {
+        BondStepResult r;
+        update_bond_forces(b, sec, stiff, kin);
+        const BondStress stress = bond_peak_stress(b, sec, c.moment_factor);
+        const BondState failure = bond_failure(b, stress, c.tan_phi);
+        if (failure != BondState::intact) {
+            if (c.track) r.released = bond_strain_energy(b, sec, stiff);
+            breaks.push_back({failure, -1, {}, stress.tensile, stress.shear});
+            release_bond(b, failure);
+            r.failure = failure;
+            return r;
+        }
+        if (c.track) r.stored = bond_strain_energy(b, sec, stiff);
+        r.force_j = bond_force_on_j(b, kin.normal);
+        r.moment_j = bond_moment_on_j(b, kin.normal);
+        return r;
+    }
+
+    static TimeStepStiffness time_step_stiffness(const BondSection& s, const BondStiffness& k,
+                                                 double r) {
+        return disc_time_step_stiffness(s, k, r);
+    }
+};
+
+}  // namespace gradem

@@ -1,0 +1,110 @@
+// The bond phase: installation and the per-step loop over bonds, generic over the bond law
+// (core/bond_models.hpp picks the kernel once per phase). Each bond writes only its own record,
+// its own side state and its pair's output slot; breaks are logged per block and merged in bond
+// order, so the results are the same for any thread count.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/bond_models.hpp"
+#include "core/parallel.hpp"
+#include "core/random.hpp"
+#include "core/world.hpp"
+
+namespace gradem {
+
+std::size_t World::install_bonds(const BondParams& params, double max_gap) {
+    require_valid(params.invalid_reason());
+    if (!std::isfinite(max_gap))
+        throw std::invalid_argument("install_bonds: max_gap is not finite");
+    const std::size_t stride =
+        visit_bond_law(params.model, [&](auto law) { return decltype(law)::side_size(params); });
+    bond_params_ = params;
+    std::vector<ParticlePair> found;
+    search_->find_pairs(particles_.position, particles_.radius, std::max(max_gap, 0.0), found);
+    bonds_.clear();
+    std::vector<Vec3> normals;
+    for (const ParticlePair& p : found) {
+        const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
+        const Vec3 d = particles_.position[j] - particles_.position[i];
+        const double dist = norm(d);
+        const double gap = dist - particles_.radius[i] - particles_.radius[j];
+        if (gap > max_gap) continue;
+        ParallelBond b;
+        b.i = p.i;
+        b.j = p.j;
+        b.model = params.model;
+        const std::uint64_t key = (static_cast<std::uint64_t>(p.i) << 32) | static_cast<std::uint32_t>(p.j);
+        b.tensile_strength = truncated_normal_positive(
+            params.tensile_strength_mean, params.tensile_strength_std, params.seed, key);
+        b.cohesion = truncated_normal_positive(params.cohesion_mean, params.cohesion_std,
+                                               params.seed ^ 0x5bd1e995ull, key);
+        bonds_.push_back(b);
+        normals.push_back(dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0});
+    }
+    bond_side_stride_ = stride;
+    bond_side_.assign(bonds_.size() * stride, 0.0);
+    bond_side_.shrink_to_fit();
+    if (stride > 0)
+        visit_bond_law(params.model, [&](auto law) {
+            for (std::size_t k = 0; k < bonds_.size(); ++k)
+                decltype(law)::install(params, normals[k], bond_side_.data() + k * stride);
+        });
+    rebuild_needed_ = true;
+    forces_current_ = false;
+    return bonds_.size();
+}
+
+World::BondEnergy World::compute_bonds(double dt) {
+    return visit_bond_law(bond_params_.model,
+                          [&](auto law) { return compute_bonds_with<decltype(law)>(dt); });
+}
+
+// Phase 3: every intact bond through the law's kernel, added into its pair's slot.
+template <class Law>
+World::BondEnergy World::compute_bonds_with(double dt) {
+    const auto nb = static_cast<std::int64_t>(bonds_.size());
+    std::vector<BondEnergy> partial(static_cast<std::size_t>(block_count(nb)));
+    std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
+    const typename Law::Context ctx = Law::context(bond_params_, sim_.track_energy);
+    const std::size_t stride = bond_side_stride_;
+    for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        BondEnergy e;
+        std::vector<BondBreak> breaks;
+        for (std::int64_t k = begin; k < end; ++k) {
+            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+            if (b.state != BondState::intact) continue;
+            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+            const PairState s{particles_.position[i], particles_.position[j],
+                              particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
+                              particles_.spin[j], particles_.radius[i], particles_.radius[j]};
+            const PairKinematics kin = pair_kinematics(s, dt);
+            const BondSection sec = bond_section(bond_params_.radius_multiplier, s.ra, s.rb);
+            const BondStiffness stiff = bond_stiffness(bond_params_.effective_modulus,
+                                                       bond_params_.stiffness_ratio, s.ra, s.rb);
+            double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+            const BondStepResult r = Law::step(ctx, b, side, sec, stiff, kin, breaks);
+            e.stored += r.stored;
+            e.released += r.released;
+            e.damage += r.damage;
+            e.slip += r.slip;
+            if (!breaks.empty()) {
+                for (const BondBreak& x : breaks)
+                    broken[static_cast<std::size_t>(blk)].push_back(
+                        {step_, time_, static_cast<std::int32_t>(k), b.i, b.j, x.mode,
+                         s.xa + kin.arm_a + x.offset, kin.normal, sec.radius, x.tensile_stress,
+                         x.shear_stress, x.element});
+                breaks.clear();
+            }
+            if (r.failure != BondState::intact) continue;
+            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
+            out.force_j += r.force_j;
+            out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
+        }
+        partial[static_cast<std::size_t>(blk)] = e;
+    });
+    for (auto& list : broken) breaks_.insert(breaks_.end(), list.begin(), list.end());
+    return ordered_sum(partial);
+}
+
+}  // namespace gradem
