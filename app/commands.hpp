@@ -20,5 +20,6 @@ int run_quick_cube(const std::vector<std::string>& args);
 int run_specimen(const std::vector<std::string>& args);
 int run_compress(const std::vector<std::string>& args);
 int run_calibrate(const std::vector<std::string>& args);
+int run_tension(const std::vector<std::string>& args);
 
 }  // namespace gradem::app

@@ -19,6 +19,8 @@ constexpr const char* kUsage =
     "  specimen <config.toml> [--show]         generate (or show the cached) packing of a config\n"
     "  compress <config.toml> [--out DIR] [--check-rate] [--vtk]\n"
     "                                          cube test of a config: load curve, cracks, macro.json\n"
+    "  tension <config.toml> [--out DIR] [--compression MACRO_JSON] [--check-rate] [--vtk]\n"
+    "                                          direct tension test of a config: σt, σc/σt (into DIR/tension)\n"
     "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
     "  --help, --version\n";
@@ -61,6 +63,7 @@ int main(int argc, char** argv) {
         if (all[0] == "specimen") return gradem::app::run_specimen(rest);
         if (all[0] == "compress") return gradem::app::run_compress(rest);
         if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
+        if (all[0] == "tension") return gradem::app::run_tension(rest);
         throw gradem::app::UsageError("unknown command '" + all[0] + "'");
     } catch (const gradem::app::UsageError& e) {
         std::cerr << "gradem: " << e.what() << "\n" << kUsage;
