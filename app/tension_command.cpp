@@ -4,7 +4,9 @@
 // packing, runs run_tension_test with a progress line on stderr, writes load_curve.csv,
 // cracks.csv and macro.json (tension positive) into <output dir>/tension and prints a summary.
 // σc/σt is reported when a compression macro.json of the same config is given with
-// --compression, or found as <output dir>/macro.json (where `gradem compress` writes it).
+// --compression (checked before the run: an unusable file is an error), or found as
+// <output dir>/macro.json (where `gradem compress` writes it; skipped with a note if it does
+// not match).
 // --check-rate runs the test again at half the strain rate.
 // Exit codes: 0 ok, 2 bad usage or input, 3 a diverged simulation (outputs still written).
 #include <cmath>
@@ -64,16 +66,12 @@ exp::TensionTestResult run_with_progress(const exp::Packing& packing, const exp:
     return r;
 }
 
-// The compression result to compare with: --compression (an error if unusable), else the
-// compression macro.json of the same output folder if there is a matching one.
-std::optional<exp::CompressionReference> compression_reference(const TensionOptions& o, const exp::CubeConfig& c,
-                                                               const exp::TensionTestResult& r,
-                                                               const exp::Packing& packing) {
-    if (!o.compression.empty()) return exp::read_compression_reference(o.compression, r, c, packing);
+// The compression macro.json of the same output folder, if there is a matching one.
+std::optional<exp::CompressionReference> compression_beside(const exp::CubeConfig& c, const exp::Packing& packing) {
     const fs::path beside = c.out_dir / "macro.json";
     if (!fs::exists(beside)) return std::nullopt;
     try {
-        return exp::read_compression_reference(beside, r, c, packing);
+        return exp::read_compression_reference(beside, c, packing);
     } catch (const lab::InputError& e) {
         std::fprintf(stderr, "tension: no σc/σt: %s\n", e.what());
         return std::nullopt;
@@ -125,6 +123,8 @@ int run_tension(const std::vector<std::string>& args) {
     const exp::Packing packing = exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
     std::fprintf(stderr, "tension: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
 
+    std::optional<exp::CompressionReference> compression;  // --compression: checked before the long run
+    if (!o.compression.empty()) compression = exp::read_compression_reference(o.compression, config, packing);
     spec.test.loading.strain_rate = exp::tension_strain_rate(config, tension, packing);
     if (config.vtk) spec.test.snapshot = exp::vtk_snapshots(out_dir / "vtk", config.vtk_every);
     const exp::TensionTestResult result = run_with_progress(packing, config, spec, "tension");
@@ -139,7 +139,7 @@ int run_tension(const std::vector<std::string>& args) {
         check = exp::compare_rates(result.cube, slow.cube, spec.test.loading.strain_rate);
         half_diverged = slow.diverged();
     }
-    const auto compression = compression_reference(o, config, result, packing);
+    if (!compression) compression = compression_beside(config, packing);
     exp::write_tension_outputs(out_dir, result, config, spec, packing, spec.test.loading.strain_rate, check, compression);
     print_summary(result, check, compression, out_dir.string());
     if (result.diverged() || half_diverged) {

@@ -30,8 +30,7 @@ struct CompressionReference {
 /// Reads a compression macro.json and checks that it is of the same material and specimen as
 /// the tension run (its "material" and "specimen" blocks equal the ones this run writes).
 /// Throws lab::InputError naming the file and what differs or is missing.
-CompressionReference read_compression_reference(const std::filesystem::path& macro_json_file,
-                                                const TensionTestResult& result, const CubeConfig& config,
+CompressionReference read_compression_reference(const std::filesystem::path& macro_json_file, const CubeConfig& config,
                                                 const Packing& packing);
 
 /// The macro.json text (exposed for tests); the CSVs are cube_output's load_curve_csv and

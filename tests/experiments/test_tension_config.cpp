@@ -135,7 +135,7 @@ TEST_CASE("tension macro.json: tension keys, σc/σt from a matching compression
     compression.macro.peak_stress_pa = 40e6;
     compression.macro.chord_modulus_pa = 25e9;
     const fs::path compression_file = write(dir.path / "macro.json", macro_json(compression, c, k, 1.0));
-    const CompressionReference ref = read_compression_reference(compression_file, t, c, k);
+    const CompressionReference ref = read_compression_reference(compression_file, c, k);
     CHECK(ref.peak_stress == Approx(40e6));
     CHECK(ref.chord_modulus == Approx(25e9));
 
@@ -158,12 +158,12 @@ TEST_CASE("tension macro.json: tension keys, σc/σt from a matching compression
     SECTION("another material is refused") {
         CubeConfig other = c;
         other.material.bond.tensile_strength_mean *= 2.0;
-        CHECK_THROWS_WITH(read_compression_reference(compression_file, t, other, k),
+        CHECK_THROWS_WITH(read_compression_reference(compression_file, other, k),
                           Contains(compression_file.string()) && Contains("another material"));
     }
     SECTION("a tension macro.json is not a compression reference") {
         const fs::path tension_file = write(dir.path / "t.json", tension_macro_json(t, c, spec, k, 2.0));
-        CHECK_THROWS_WITH(read_compression_reference(tension_file, t, c, k), Contains("not the macro.json of a compression test"));
+        CHECK_THROWS_WITH(read_compression_reference(tension_file, c, k), Contains("not the macro.json of a compression test"));
     }
     SECTION("files are written atomically into the folder") {
         write_tension_outputs(dir.path / "tension", t, c, spec, k, 2.0, std::nullopt, ref);
