@@ -26,5 +26,6 @@ int run_study(const std::vector<std::string>& args);
 int run_report(const std::vector<std::string>& args);
 /// `gradem lab`'s report.html, called by the lab command once its outputs are written.
 void write_lab_report(const std::filesystem::path& out_dir, std::ostream& announce);
+int run_tension(const std::vector<std::string>& args);
 
 }  // namespace gradem::app

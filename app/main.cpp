@@ -22,6 +22,8 @@ constexpr const char* kUsage =
     "  specimen <config.toml> [--show]         generate (or show the cached) packing of a config\n"
     "  compress <config.toml> [--out DIR] [--check-rate] [--vtk]\n"
     "                                          cube test of a config: load curve, cracks, macro.json\n"
+    "  tension <config.toml> [--out DIR] [--compression MACRO_JSON] [--check-rate] [--vtk]\n"
+    "                                          direct tension test of a config: σt, σc/σt (into DIR/tension)\n"
     "  calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]\n"
     "                                          micro-parameters from the lab targets: summary.json, ...\n"
     "  report <lab|compress|calibrate> <folder>\n"
@@ -70,6 +72,7 @@ int main(int argc, char** argv) {
         if (all[0] == "compress") return gradem::app::run_compress(rest);
         if (all[0] == "calibrate") return gradem::app::run_calibrate(rest);
         if (all[0] == "report") return gradem::app::run_report(rest);
+        if (all[0] == "tension") return gradem::app::run_tension(rest);
         if (all[0] == "study") return gradem::app::run_study(rest);
         std::cerr << "gradem: unknown command '" << all[0] << "'\n" << kUsage;
         return 2;

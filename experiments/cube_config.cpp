@@ -26,7 +26,8 @@ using namespace toml_io;
 
 constexpr double kMm = 1.0e-3, kMpa = 1.0e6, kGpa = 1.0e9;  // display unit -> SI
 
-const std::vector<std::string> kTables = {"specimen", "size_rule", "genesis", "material", "test", "output"};
+const std::vector<std::string> kTables = {"specimen", "size_rule", "genesis", "material", "test", "output",
+                                          "tension"};  // [tension]: tension_config.hpp
 
 void read_specimen(Context& ctx, const toml::table& root, CubeConfig& c) {
     Section s(ctx, root, "specimen");

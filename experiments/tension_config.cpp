@@ -1,0 +1,48 @@
+#include "experiments/tension_config.hpp"
+
+#include <string>
+#include <toml++/toml.h>
+
+#include "experiments/toml_section.hpp"
+#include "lab_data/input_error.hpp"
+
+namespace gradem::exp {
+namespace {
+
+// "key 'tension.x' = v violates rule" at the key's line, from a validator's "Struct::x = v violates rule".
+[[noreturn]] void reject(toml_io::Context& ctx, const std::string& key, const std::string& reason) {
+    const toml_io::KeyInfo& info = ctx.keys[key];
+    const auto at = reason.find(" violates ");
+    throw lab::InputError(ctx.file, info.line,
+                          "key '" + key + "' = " + info.text + " violates " +
+                              (at == std::string::npos ? reason : reason.substr(at + 10)));
+}
+
+}  // namespace
+
+TensionConfig load_tension_config(const CubeConfig& config) {
+    using namespace toml_io;
+    Context ctx;
+    const toml::table root = parse_toml_file(config.file, ctx);
+    TensionConfig t;
+    t.spec.test = config.test;
+    Section s(ctx, root, "tension");
+    s.real("grip_depth_fraction", t.spec.grip_depth_fraction);
+    s.real("auto_peak_strain", t.auto_peak_strain);
+    s.finish();
+    if (auto why = t.spec.invalid_reason()) {
+        // config.test was validated by load_cube_config: only the grips can be wrong here.
+        if (why->rfind("TensionTestSpec::grip_depth_fraction", 0) != 0) throw lab::InputError(ctx.file, 0, *why);
+        reject(ctx, "tension.grip_depth_fraction", *why);
+    }
+    if (!(t.auto_peak_strain > 0.0 && t.auto_peak_strain < 0.01))
+        reject(ctx, "tension.auto_peak_strain", "violates in (0, 0.01)");
+    return t;
+}
+
+double tension_strain_rate(const CubeConfig& config, const TensionConfig& tension, const Packing& packing) {
+    return config.auto_strain_rate ? quasi_static_strain_rate(packing, config.material, tension.auto_peak_strain)
+                                   : config.test.loading.strain_rate;
+}
+
+}  // namespace gradem::exp
