@@ -5,6 +5,7 @@
 // speed-up. Not a test: numbers depend on the machine; quote medians of several runs.
 //
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json]
+//   gradem-bench --genesis 20000,200000 [--json]   (genesis rows instead: bench/genesis_bench.cpp)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "bench/genesis_bench.hpp"
 #include "core/world.hpp"
 #include "experiments/platen_compression.hpp"
 #include "experiments/quick_packing.hpp"
@@ -30,6 +32,7 @@ struct Options {
     std::int64_t steps = 1000;
     int repeat = 3;
     bool json = false;
+    std::vector<std::int64_t> genesis;  ///< genesis rows at these grain counts (then nothing else)
 };
 
 template <class T>
@@ -54,9 +57,10 @@ Options parse(int argc, char** argv) {
         else if (a == "--steps") o.steps = std::stoll(value());
         else if (a == "--repeat") o.repeat = std::stoi(value());
         else if (a == "--json") o.json = true;
+        else if (a == "--genesis") o.genesis = parse_list<std::int64_t>(value());
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
-                         "[--repeat R] [--json]\n";
+                         "[--repeat R] [--json] | --genesis N1,N2,... [--json]\n";
             std::exit(0);
         } else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
     }
@@ -172,6 +176,10 @@ void print_sample(const Sample& s, double speedup, bool json) {
 int main(int argc, char** argv) {
     try {
         const Options o = parse(argc, argv);
+        if (!o.genesis.empty()) {
+            bench::run_genesis_bench(o.genesis, o.json);
+            return 0;
+        }
         if (!o.json) {
             std::printf("gradem-bench: bonded packing (radius ratio 3) between closing platens; "
                         "median of %d runs\n", o.repeat);

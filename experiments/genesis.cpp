@@ -139,37 +139,40 @@ void debug_stage(DensePacker& packer, double p, bool ok) {
                  b.wall_stress_lo.z * 1e-6, b.wall_stress_hi.z * 1e-6, b.max_overlap, b.mean_overlap);
 }
 
-// Step 2: jam at a high pressure, unload in decades to the locked-in stress. Returns whether
-// the final stage converged.
-bool pack(DensePacker& packer, const GenesisSpec& g) {
-    bool first = true;
-    for (double p = kJammingPressure * g.reference_modulus; p > g.locked_in_stress; p *= 0.1) {
-        const bool ok = packer.relax(p, kStageRatio, kStageStress, remaining(g, packer));
-        debug_stage(packer, p, ok);
-        if (first && ok) require_filled(packer, g);  // decompression only makes the box larger
-        first = false;
-    }
-    const bool ok = packer.relax(g.locked_in_stress, kMargin * g.equilibrium_ratio, kMargin * g.stress_tolerance,
-                                 remaining(g, packer));
-    debug_stage(packer, g.locked_in_stress, ok);
-    if (ok) require_filled(packer, g);
-    return ok;
-}
-
-// Step 3: floaters grow by floater_growth per pass; the packing is minimised again after each.
-bool reduce_floaters(DensePacker& packer, const GenesisSpec& g, Packing& out, bool converged) {
+// Step 3: floaters grow by floater_growth per pass and the packing is minimised again after
+// each pass, at `pressure`.
+void reduce_floaters(DensePacker& packer, const GenesisSpec& g, double pressure, Packing& out) {
     const double n = static_cast<double>(packer.radii().size());
     std::vector<std::size_t> floating = floaters(packer.contact_counts(), g.min_contacts);
     out.floaters_before = static_cast<double>(floating.size()) / n;
     for (int pass = 0; pass < g.floater_passes && !floating.empty() && g.floater_growth > 0.0; ++pass) {
         for (std::size_t i : floating) packer.grow(i, 1.0 + g.floater_growth);
-        converged = packer.relax(g.locked_in_stress, kMargin * g.equilibrium_ratio, kMargin * g.stress_tolerance,
-                                 remaining(g, packer));
-        debug_stage(packer, g.locked_in_stress, converged);
+        const bool ok = packer.relax(pressure, kStageRatio, kStageStress, remaining(g, packer));
+        debug_stage(packer, pressure, ok);
         floating = floaters(packer.contact_counts(), g.min_contacts);
     }
-    out.floaters_after = static_cast<double>(floating.size()) / n;
-    return converged;
+}
+
+// Steps 2 and 3: jam at a high pressure (where the minimiser converges fast and a floater's
+// growth is small against the overlaps), reduce floaters there, unload in decades to the
+// locked-in stress. Returns whether the final stage converged.
+bool pack(DensePacker& packer, const GenesisSpec& g, Packing& out) {
+    const double jamming = std::max(g.locked_in_stress, kJammingPressure * g.reference_modulus);
+    const bool jammed = packer.relax(jamming, kStageRatio, kStageStress, remaining(g, packer));
+    debug_stage(packer, jamming, jammed);
+    if (jammed) require_filled(packer, g);  // decompression only makes the box larger
+    reduce_floaters(packer, g, jamming, out);
+    for (double p = 0.1 * jamming; p > g.locked_in_stress; p *= 0.1) {
+        const bool ok = packer.relax(p, kStageRatio, kStageStress, remaining(g, packer));
+        debug_stage(packer, p, ok);
+    }
+    const bool ok = packer.relax(g.locked_in_stress, kMargin * g.equilibrium_ratio, kMargin * g.stress_tolerance,
+                                 remaining(g, packer));
+    debug_stage(packer, g.locked_in_stress, ok);
+    if (ok) require_filled(packer, g);
+    out.floaters_after = static_cast<double>(floaters(packer.contact_counts(), g.min_contacts).size()) /
+                         static_cast<double>(packer.radii().size());
+    return ok;
 }
 
 // Step 5: the World, with real masses and walls, cycles until it measures the tolerances.
@@ -236,8 +239,7 @@ Packing generate_packing(const lab::GradationCurve& curve, const SpecimenSpec& s
         throw std::invalid_argument(why.str());
     }
     DensePacker packer(out.grains.diameters, g.edge, g.reference_modulus, spec.seed ^ 0xA5A5A5A5ull);
-    bool relaxed = pack(packer, g);
-    relaxed = reduce_floaters(packer, g, out, relaxed);
+    const bool relaxed = pack(packer, g, out);
     out.relax_iterations = packer.iterations();
 
     const Vec3 box = packer.box();

@@ -7,7 +7,8 @@
 //      and unloaded in decades to the isotropic "locked-in" stress: the walls end at that
 //      stress and every grain in force balance, grains frictionless;
 //   3. floaters (grains with fewer than `min_contacts` contacts) enlarged a little, repeatedly,
-//      and the packing minimised again after each pass;
+//      and the packing minimised again after each pass (at the jamming pressure, 1e-3 E*, where
+//      a 1 % growth is a small disturbance; floaters_after is counted at the locked-in stress);
 //   4. grains sorted along the Morton curve (morton_order: memory locality for the engine);
 //   5. a short DEM check with the World (real masses, the six frictionless walls, local
 //      damping): cycled until the World itself measures every wall stress within tolerance and
@@ -70,8 +71,8 @@ struct Packing {
     double porosity = 0.0;             ///< 1 - grain volume / box volume [-]
     double edge_over_d50 = 0.0;        ///< L / d50 [-]
     double mean_coordination = 0.0;    ///< contacts per grain (walls included) [-]
-    double floaters_before = 0.0;      ///< fraction of grains with < min_contacts, before passes
-    double floaters_after = 0.0;       ///< and after [-]
+    double floaters_before = 0.0;      ///< fraction of grains with < min_contacts at the jamming pressure, before passes
+    double floaters_after = 0.0;       ///< at the end, at the locked-in stress [-]
     Vec3 wall_stress;                  ///< final normal stress on the x, y, z walls [Pa]
     double unbalanced_ratio = 0.0;     ///< final mean unbalanced-force ratio [-]
     double radius_growth = 1.0;        ///< multiplier applied to every radius (1: the box moves instead) [-]
