@@ -19,6 +19,18 @@ constexpr double kSkinFraction = 0.3;  // Verlet skin / mean radius [-]
 
 double& component(Vec3& v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
 
+// Fixed blocks (core/parallel.hpp), run in parallel only when there are enough of them: an
+// iteration is a few microseconds per block, and two OpenMP barriers per iteration cost more
+// than that for small packings (and far more on a loaded machine). Same blocks either way, so
+// the results do not change.
+constexpr std::int64_t kMinParallelBlocks = 8;
+
+template <class Body>
+void for_blocks(std::int64_t n, Body&& body) {
+    if (block_count(n) >= kMinParallelBlocks) return for_each_block(n, body);
+    for (std::int64_t b = 0; b < block_count(n); ++b) body(b * kBlockSize, std::min(n, (b + 1) * kBlockSize), b);
+}
+
 }  // namespace
 
 // Per-block partial sums of one force evaluation (combined in block order).
@@ -98,7 +110,7 @@ DensePacker::Sums DensePacker::compute_forces(double pressure) {
     if (rebuild_needed_) rebuild_neighbors();
     const auto n = static_cast<std::int64_t>(x_.size());
     std::vector<Sums> partial(static_cast<std::size_t>(block_count(n)));
-    for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t block) {
+    for_blocks(n, [&](std::int64_t begin, std::int64_t end, std::int64_t block) {
         Sums s;
         for (std::int64_t ii = begin; ii < end; ++ii) {
             const auto i = static_cast<std::size_t>(ii);
@@ -170,7 +182,7 @@ void DensePacker::move(double dt, double alpha, double v_norm, double f_norm) {
     }
     const auto n = static_cast<std::int64_t>(x_.size());
     std::vector<double> moved(static_cast<std::size_t>(block_count(n)), 0.0);
-    for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t block) {
+    for_blocks(n, [&](std::int64_t begin, std::int64_t end, std::int64_t block) {
         double worst = 0.0;
         for (std::int64_t ii = begin; ii < end; ++ii) {
             const auto i = static_cast<std::size_t>(ii);

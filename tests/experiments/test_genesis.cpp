@@ -201,6 +201,32 @@ TEST_CASE("genesis is bitwise identical for any thread count", "[experiments][ge
     CHECK(std::memcmp(&one.unbalanced_ratio, &three.unbalanced_ratio, sizeof(double)) == 0);
 }
 
+TEST_CASE("genesis of a packing large enough for parallel minimisation is bitwise identical for 1 and 2 threads",
+          "[experiments][genesis][.slow]") {
+    SpecimenSpec spec;  // ~17 000 grains: >= 8 blocks of 2048, so the minimiser's loops run in parallel
+    spec.size_rule.min_diameter = 0.3e-3;
+    spec.size_rule.max_diameter = 1.18e-3;
+    spec.genesis.edge = 9.9e-3;
+    spec.seed = 3;
+    const int threads = thread_count();
+#ifdef _OPENMP
+    omp_set_num_threads(1);
+#endif
+    const Packing one = generate_packing(test::van_buren_curve(), spec);
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+    const Packing two = generate_packing(test::van_buren_curve(), spec);
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    INFO(describe(one, spec));
+    REQUIRE(one.position.size() > 16384);
+    REQUIRE(one.position.size() == two.position.size());
+    CHECK(std::memcmp(one.position.data(), two.position.data(), one.position.size() * sizeof(Vec3)) == 0);
+    CHECK(one.relax_iterations == two.relax_iterations);
+}
+
 TEST_CASE("genesis refuses inputs it cannot honour", "[experiments][genesis]") {
     SpecimenSpec spec;
     spec.size_rule.min_diameter = 0.4e-3;
