@@ -238,14 +238,22 @@ Packing generate_packing(const lab::GradationCurve& curve, const SpecimenSpec& s
             << " m): set size_rule.max_diameter or a larger edge";
         throw std::invalid_argument(why.str());
     }
-    DensePacker packer(out.grains.diameters, g.edge, g.reference_modulus, spec.seed ^ 0xA5A5A5A5ull);
-    const bool relaxed = pack(packer, g, out);
-    out.relax_iterations = packer.iterations();
-
-    const Vec3 box = packer.box();
-    const std::vector<std::int32_t> order = morton_order(packer.positions(), {0, 0, 0}, box);
-    const std::int64_t dem_budget = std::min(kDemSteps, std::max<std::int64_t>(1, g.max_steps - packer.iterations()));
-    const World world = check_with_world(permuted(packer.positions(), order), permuted(packer.radii(), order), box, g, dem_budget);
+    bool relaxed = false;
+    Vec3 box;
+    std::vector<Vec3> position;
+    std::vector<double> radius;
+    {  // the packer's arrays are freed before the World is built (peak memory)
+        DensePacker packer(out.grains.diameters, g.edge, g.reference_modulus, spec.seed ^ 0xA5A5A5A5ull);
+        relaxed = pack(packer, g, out);
+        out.relax_iterations = packer.iterations();
+        box = packer.box();
+        const std::vector<std::int32_t> order = morton_order(packer.positions(), {0, 0, 0}, box);
+        position = permuted(packer.positions(), order);
+        radius = permuted(packer.radii(), order);
+    }
+    const std::int64_t dem_budget = std::min(kDemSteps, std::max<std::int64_t>(1, g.max_steps - out.relax_iterations));
+    const World world = check_with_world(position, radius, box, g, dem_budget);
+    position = {}, radius = {};
     report(world, g, out);
     out.converged = relaxed && stresses_ok(world, g) && out.unbalanced_ratio <= g.equilibrium_ratio;
     out.radius_growth = 1.0;
