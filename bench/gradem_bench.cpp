@@ -7,6 +7,7 @@
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json]
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
 //                at size ratios 1, 10, 50 instead: bench/neighbor_bench.cpp)
+//   gradem-bench --genesis 20000,200000 [--json]   (genesis rows instead: bench/genesis_bench.cpp)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "bench/neighbor_bench.hpp"
 #include "core/openmp_policy.hpp"
 #include "core/parallel.hpp"
+#include "bench/genesis_bench.hpp"
 #include "core/world.hpp"
 #include "experiments/platen_compression.hpp"
 #include "experiments/quick_packing.hpp"
@@ -35,6 +37,7 @@ struct Options {
     int repeat = 3;
     bool json = false;
     std::int64_t neighbors = 0;  ///< > 0: neighbour-search rows for this many particles
+    std::vector<std::int64_t> genesis;  ///< genesis rows at these grain counts (then nothing else)
 };
 
 template <class T>
@@ -60,10 +63,12 @@ Options parse(int argc, char** argv) {
         else if (a == "--repeat") o.repeat = std::stoi(value());
         else if (a == "--json") o.json = true;
         else if (a == "--neighbors") o.neighbors = std::stoll(value());
+        else if (a == "--genesis") o.genesis = parse_list<std::int64_t>(value());
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
                          "[--repeat R] [--json]\n"
-                         "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n";
+                         "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
+                         "       gradem-bench --genesis N1,N2,... [--json]\n";
             std::exit(0);
         } else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
     }
@@ -180,6 +185,10 @@ int main(int argc, char** argv) {
     use_sleeping_openmp_threads(argv);
     try {
         const Options o = parse(argc, argv);
+        if (!o.genesis.empty()) {
+            bench::run_genesis_bench(o.genesis, o.json);
+            return 0;
+        }
         if (o.neighbors > 0) {
             bench::run_neighbor_bench(o.neighbors, o.threads, o.repeat, o.json);
             return 0;

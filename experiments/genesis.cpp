@@ -11,8 +11,15 @@
 #include "core/random.hpp"
 #include "core/world.hpp"
 #include "experiments/dense_placement.hpp"
+#include "experiments/morton_order.hpp"
 
 namespace gradem::exp {
+
+namespace {
+// Linear contacts under isotropic stress p overlap by about 2.5 p/E* of a grain radius
+// (F ~ p (2R)^2 on k_n ~ pi R E* / 2); beyond 1e-3 E* that is no longer a seating stress.
+constexpr double kMaxStressOverModulus = 1.0e-3;
+}  // namespace
 
 std::optional<std::string> GenesisSpec::invalid_reason() const {
     std::ostringstream out;
@@ -20,6 +27,12 @@ std::optional<std::string> GenesisSpec::invalid_reason() const {
     if (!(edge > 0.0)) rule("edge", edge, "> 0");
     else if (!(target_solid_fraction > 0.3 && target_solid_fraction < 0.75)) rule("target_solid_fraction", target_solid_fraction, "in (0.3, 0.75)");
     else if (!(locked_in_stress > 0.0)) rule("locked_in_stress", locked_in_stress, "> 0");
+    else if (!(reference_modulus > 0.0)) rule("reference_modulus", reference_modulus, "> 0");
+    else if (!(locked_in_stress <= kMaxStressOverModulus * reference_modulus))
+        out << "genesis.locked_in_stress = " << locked_in_stress << " Pa violates <= " << kMaxStressOverModulus
+            << " x reference_modulus (" << kMaxStressOverModulus * reference_modulus
+            << " Pa): a locked-in stress is a small seating stress; at this one the rigid-grain packing "
+               "would overlap by more than ~0.3 % of a grain radius";
     else if (!(stress_tolerance > 0.0 && stress_tolerance < 1.0)) rule("stress_tolerance", stress_tolerance, "in (0, 1)");
     else if (!(reference_modulus > 0.0)) rule("reference_modulus", reference_modulus, "> 0");
     else if (!(stiffness_ratio > 0.0)) rule("stiffness_ratio", stiffness_ratio, "> 0");
@@ -50,7 +63,13 @@ std::optional<std::string> SpecimenSpec::invalid_reason() const {
 namespace {
 
 constexpr int kAxes = 3;
-constexpr double kOvergrowth = 0.003;  // initial radius growth past the geometric contact state
+constexpr double kJammingPressure = 1.0e-3;  // first minimisation stage, x E* [-]
+constexpr double kStageRatio = 1.0e-2;       // loose tolerances of the intermediate stages
+constexpr double kStageStress = 0.1;
+constexpr double kMargin = 0.5;              // the minimiser aims at this x the tolerances
+constexpr double kFillSlack = 1.01;          // final edge may exceed the asked edge by 1 %
+constexpr std::int64_t kDemChunk = 20;       // DEM steps between checks
+constexpr std::int64_t kDemSteps = 2000;     // DEM check budget (within max_steps)
 
 // Six frictionless walls around the box, normals inward: x-, x+, y-, y+, z-, z+.
 void add_vessel(World& world, const Vec3& lo, const Vec3& hi, const GenesisSpec& g) {
@@ -80,68 +99,127 @@ double wall_stress(const World& w, int k) {
     return -dot(wall.reaction, wall.normal) / area;
 }
 
-// Isotropic stress installation by uniform radius scaling (PFC material genesis): the vessel
-// stays put and every radius is multiplied by (1 + dm), with dm a fraction of the volumetric
-// strain that would close the error in the mean wall stress for a packing bulk modulus of
-// 2 % of E* (jammed frictionless packings under 1e-5..1e-3 E* are that soft). Growth loads every contact at once (no wave from the walls), so the stress
-// responds within a few steps and the loop is stable; dm is capped per update.
-class RadiusServo {
-    static constexpr double kBulkFraction = 0.02;
-
-public:
-    explicit RadiusServo(const GenesisSpec& g) : g_(g) {}
-    /// Returns the multiplier applied.
-    double update(World& world) {
-        double mean = 0.0;
-        for (int k = 0; k < 2 * kAxes; ++k) mean += wall_stress(world, k) / (2 * kAxes);
-        const double error = g_.locked_in_stress - mean;
-        if (std::fabs(error) < 0.01 * g_.locked_in_stress) return 1.0;  // dead band: let it settle
-        const double dm = std::clamp(0.05 * error / (3.0 * kBulkFraction * g_.reference_modulus), -2.0e-6, 2.0e-6);
-        if (std::fabs(dm) < 1e-12) return 1.0;
-        world.scale_radii(1.0 + dm);
-        return 1.0 + dm;
-    }
-
-private:
-    GenesisSpec g_;
-};
-
 bool stresses_ok(const World& w, const GenesisSpec& g) {
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < 2 * kAxes; ++k)
         if (std::fabs(wall_stress(w, k) - g.locked_in_stress) > g.stress_tolerance * g.locked_in_stress) return false;
     return true;
 }
 
-// Cycles until the stress and equilibrium tolerances hold (or the budget ends): the radius
-// servo runs while the mean stress is off target; once it is within 1 % the servo rests, so
-// the packing can settle undisturbed (the servo has a 1 % dead band on the mean stress).
-// Returns whether both tolerances hold; `growth` accumulates the radius multiplier.
-bool cycle_to_target(World& world, RadiusServo& servo, const GenesisSpec& g, std::int64_t budget,
-                     double& growth) {
-    const std::int64_t end = world.step_count() + budget;
-    while (world.step_count() < end) {
-        const bool on_target = stresses_ok(world, g);
-        const double dm = servo.update(world);  // keeps the mean on target even while settling
-        growth *= dm;
-        world.run(dm == 1.0 ? 200 : 20);
-        if (world.status() != RunStatus::running)
-            throw std::runtime_error("genesis diverged: " + world.status_reason());
-        if (std::getenv("GRADEM_DEBUG_GENESIS") && world.step_count() % 1000 == 0)
-            std::fprintf(stderr, "genesis step %lld: stress %.4g %.4g %.4g %.4g %.4g %.4g MPa, ratio %.3g, growth %.6f\n",
-                         static_cast<long long>(world.step_count()), wall_stress(world, 0) * 1e-6, wall_stress(world, 1) * 1e-6,
-                         wall_stress(world, 2) * 1e-6, wall_stress(world, 3) * 1e-6, wall_stress(world, 4) * 1e-6,
-                         wall_stress(world, 5) * 1e-6, world.unbalanced_force_ratio(), growth);
-        if (on_target && stresses_ok(world, g) && world.unbalanced_force_ratio() < g.equilibrium_ratio) return true;
-    }
-    return false;
+std::vector<std::size_t> floaters(const std::vector<std::int32_t>& count, int min_contacts) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < count.size(); ++i)
+        if (count[i] < min_contacts) out.push_back(i);
+    return out;
 }
 
-std::vector<std::int32_t> floaters(const World& w, int min_contacts) {
-    const std::vector<std::int32_t> count = w.contact_counts();
-    std::vector<std::int32_t> out;
-    for (std::size_t i = 0; i < count.size(); ++i)
-        if (count[i] < min_contacts) out.push_back(static_cast<std::int32_t>(i));
-    return out;
+std::int64_t remaining(const GenesisSpec& g, const DensePacker& packer) {
+    return std::max<std::int64_t>(0, g.max_steps - packer.iterations());
+}
+
+// Grains that jam below the target solid fraction need a bigger vessel than asked.
+void require_filled(const DensePacker& packer, const GenesisSpec& g) {
+    const double edge = std::cbrt(packer.box().x * packer.box().y * packer.box().z);
+    if (edge <= kFillSlack * g.edge) return;
+    std::ostringstream why;
+    why << "genesis.target_solid_fraction = " << g.target_solid_fraction << " cannot be reached: the grains of this gradation jam at a solid fraction of "
+        << packer.solid_fraction() << " and need a " << edge * 1e3 << " mm vessel instead of the asked " << g.edge * 1e3
+        << " mm; lower genesis.target_solid_fraction (below " << packer.solid_fraction() << ")";
+    throw std::invalid_argument(why.str());
+}
+
+const auto debug_start = std::chrono::steady_clock::now();
+
+void debug_stage(DensePacker& packer, double p, bool ok) {
+    if (!std::getenv("GRADEM_DEBUG_GENESIS")) return;
+    const PackingBalance b = packer.balance();
+    std::fprintf(stderr, "genesis stage p %.3g Pa: %s after %lld iterations (%lld rebuilds, %.2f s), phi %.4f, ratio %.3g, walls %.4g %.4g %.4g %.4g %.4g %.4g MPa, overlap max %.3g mean %.3g\n",
+                 p, ok ? "ok" : "NOT converged", static_cast<long long>(packer.iterations()), static_cast<long long>(packer.rebuilds()),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - debug_start).count(), packer.solid_fraction(), b.unbalanced_ratio,
+                 b.wall_stress_lo.x * 1e-6, b.wall_stress_hi.x * 1e-6, b.wall_stress_lo.y * 1e-6, b.wall_stress_hi.y * 1e-6,
+                 b.wall_stress_lo.z * 1e-6, b.wall_stress_hi.z * 1e-6, b.max_overlap, b.mean_overlap);
+}
+
+// Step 3: floaters grow by floater_growth per pass and the packing is minimised again after
+// each pass, at `pressure`.
+void reduce_floaters(DensePacker& packer, const GenesisSpec& g, double pressure, Packing& out) {
+    const double n = static_cast<double>(packer.radii().size());
+    std::vector<std::size_t> floating = floaters(packer.contact_counts(), g.min_contacts);
+    out.floaters_before = static_cast<double>(floating.size()) / n;
+    for (int pass = 0; pass < g.floater_passes && !floating.empty() && g.floater_growth > 0.0; ++pass) {
+        for (std::size_t i : floating) packer.grow(i, 1.0 + g.floater_growth);
+        const bool ok = packer.relax(pressure, kStageRatio, kStageStress, remaining(g, packer));
+        debug_stage(packer, pressure, ok);
+        floating = floaters(packer.contact_counts(), g.min_contacts);
+    }
+}
+
+// Steps 2 and 3: jam at a high pressure (where the minimiser converges fast and a floater's
+// growth is small against the overlaps), reduce floaters there, unload in decades to the
+// locked-in stress. Returns whether the final stage converged.
+bool pack(DensePacker& packer, const GenesisSpec& g, Packing& out) {
+    const double jamming = std::max(g.locked_in_stress, kJammingPressure * g.reference_modulus);
+    const bool jammed = packer.relax(jamming, kStageRatio, kStageStress, remaining(g, packer));
+    debug_stage(packer, jamming, jammed);
+    if (jammed) require_filled(packer, g);  // decompression only makes the box larger
+    reduce_floaters(packer, g, jamming, out);
+    for (double p = 0.1 * jamming; p > g.locked_in_stress; p *= 0.1) {
+        const bool ok = packer.relax(p, kStageRatio, kStageStress, remaining(g, packer));
+        debug_stage(packer, p, ok);
+    }
+    const bool ok = packer.relax(g.locked_in_stress, kMargin * g.equilibrium_ratio, kMargin * g.stress_tolerance,
+                                 remaining(g, packer));
+    debug_stage(packer, g.locked_in_stress, ok);
+    if (ok) require_filled(packer, g);
+    out.floaters_after = static_cast<double>(floaters(packer.contact_counts(), g.min_contacts).size()) /
+                         static_cast<double>(packer.radii().size());
+    return ok;
+}
+
+// Step 5: the World, with real masses and walls, cycles until it measures the tolerances.
+World check_with_world(const std::vector<Vec3>& x, const std::vector<double>& r, const Vec3& box, const GenesisSpec& g,
+                       std::int64_t budget) {
+    ParticleSet particles;
+    for (std::size_t i = 0; i < x.size(); ++i) particles.add(x[i], r[i], g.density);
+    ContactParams contact;
+    contact.effective_modulus = g.reference_modulus;
+    contact.stiffness_ratio = g.stiffness_ratio;
+    contact.friction = 0.0;
+    SimParams sim;
+    sim.local_damping = g.damping;
+    World world(std::move(particles), contact, sim);
+    add_vessel(world, {0, 0, 0}, box, g);
+    do {
+        world.run(std::min(kDemChunk, std::max<std::int64_t>(1, budget - world.step_count())));
+        if (world.status() != RunStatus::running) throw std::runtime_error("genesis diverged: " + world.status_reason());
+        if (std::getenv("GRADEM_DEBUG_GENESIS"))
+            std::fprintf(stderr, "genesis DEM step %lld: stress %.4g %.4g %.4g %.4g %.4g %.4g MPa, ratio %.3g\n",
+                         static_cast<long long>(world.step_count()), wall_stress(world, 0) * 1e-6, wall_stress(world, 1) * 1e-6,
+                         wall_stress(world, 2) * 1e-6, wall_stress(world, 3) * 1e-6, wall_stress(world, 4) * 1e-6,
+                         wall_stress(world, 5) * 1e-6, world.unbalanced_force_ratio());
+    } while (world.step_count() < budget && !(stresses_ok(world, g) && world.unbalanced_force_ratio() <= g.equilibrium_ratio));
+    return world;
+}
+
+void report(const World& world, const GenesisSpec& g, Packing& out) {
+    const ParticleSet& p = world.particles();
+    out.position = p.position;
+    out.radius = p.radius;
+    out.density = g.density;
+    out.box_lo = {world.walls()[0].point.x, world.walls()[2].point.y, world.walls()[4].point.z};
+    out.box_hi = {world.walls()[1].point.x, world.walls()[3].point.y, world.walls()[5].point.z};
+    double solid = 0.0;
+    for (double r : out.radius) solid += 4.0 / 3.0 * kPi * r * r * r;
+    const Vec3 extent = out.box_hi - out.box_lo;
+    out.porosity = 1.0 - solid / (extent.x * extent.y * extent.z);
+    out.edge_over_d50 = out.edge() / out.grains.d50;
+    double total = 0.0;
+    for (std::int32_t c : world.contact_counts()) total += c;
+    out.mean_coordination = total / static_cast<double>(out.radius.size());
+    out.wall_stress = {0.5 * (wall_stress(world, 0) + wall_stress(world, 1)),
+                       0.5 * (wall_stress(world, 2) + wall_stress(world, 3)),
+                       0.5 * (wall_stress(world, 4) + wall_stress(world, 5))};
+    out.unbalanced_ratio = world.unbalanced_force_ratio();
+    out.steps = world.step_count();
 }
 
 }  // namespace
@@ -160,66 +238,41 @@ Packing generate_packing(const lab::GradationCurve& curve, const SpecimenSpec& s
             << " m): set size_rule.max_diameter or a larger edge";
         throw std::invalid_argument(why.str());
     }
-    const DensePlacement placed = place_dense(out.grains.diameters, g.edge, spec.seed ^ 0xA5A5A5A5ull, 1.0e-3);
-
-    ParticleSet particles;
-    for (std::size_t i = 0; i < placed.position.size(); ++i)
-        particles.add(placed.position[i], placed.radius[i], g.density);
-    ContactParams contact;
-    contact.effective_modulus = g.reference_modulus;
-    contact.stiffness_ratio = g.stiffness_ratio;
-    contact.friction = 0.0;
-    SimParams sim;
-    sim.local_damping = g.damping;
-    sim.skin_fraction = 0.3;
-    World world(std::move(particles), contact, sim);
-    add_vessel(world, {0, 0, 0}, {placed.edge, placed.edge, placed.edge}, g);
-    // Approach the target from above: an over-grown, jammed packing unloads smoothly, while
-    // loading up from below makes a frictionless packing creep through rearrangements.
-    RadiusServo servo(g);
-    double growth = 1.0 + kOvergrowth;
-    world.scale_radii(growth);
-
-    cycle_to_target(world, servo, g, g.max_steps / 3, growth);
-    const std::size_t n = world.particles().size();
-    std::vector<std::int32_t> floating = floaters(world, g.min_contacts);
-    out.floaters_before = static_cast<double>(floating.size()) / static_cast<double>(n);
-    for (int pass = 0; pass < g.floater_passes && !floating.empty(); ++pass) {
-        ParticleSet& p = world.edit_particles();
-        for (std::int32_t i : floating)
-            p.set_radius(static_cast<std::size_t>(i), p.radius[static_cast<std::size_t>(i)] * (1.0 + g.floater_growth));
-        cycle_to_target(world, servo, g, g.max_steps / (3 * std::max(1, g.floater_passes)), growth);
-        floating = floaters(world, g.min_contacts);
+    bool relaxed = false;
+    Vec3 box;
+    std::vector<Vec3> position;
+    std::vector<double> radius;
+    {  // the packer's arrays are freed before the World is built (peak memory)
+        DensePacker packer(out.grains.diameters, g.edge, g.reference_modulus, spec.seed ^ 0xA5A5A5A5ull);
+        relaxed = pack(packer, g, out);
+        out.relax_iterations = packer.iterations();
+        box = packer.box();
+        const std::vector<std::int32_t> order = morton_order(packer.positions(), {0, 0, 0}, box);
+        position = permuted(packer.positions(), order);
+        radius = permuted(packer.radii(), order);
     }
-    // Whatever the passes left: bring the stress back and settle, on the rest of the budget.
-    cycle_to_target(world, servo, g, std::max<std::int64_t>(0, g.max_steps - world.step_count()), growth);
-    out.floaters_after = static_cast<double>(floaters(world, g.min_contacts).size()) / static_cast<double>(n);
-    const ParticleSet& p = world.particles();
-    out.position = p.position;
-    out.radius = p.radius;
-    out.density = g.density;
-    out.box_lo = {world.walls()[0].point.x, world.walls()[2].point.y, world.walls()[4].point.z};
-    out.box_hi = {world.walls()[1].point.x, world.walls()[3].point.y, world.walls()[5].point.z};
-    double solid = 0.0;
-    for (double r : out.radius) solid += 4.0 / 3.0 * kPi * r * r * r;
-    const Vec3 extent = out.box_hi - out.box_lo;
-    out.porosity = 1.0 - solid / (extent.x * extent.y * extent.z);
-    out.edge_over_d50 = out.edge() / out.grains.d50;
-    const std::vector<std::int32_t> count = world.contact_counts();
-    double total = 0.0;
-    for (std::int32_t c : count) total += c;
-    out.mean_coordination = total / static_cast<double>(n);
-    out.wall_stress = {0.5 * (wall_stress(world, 0) + wall_stress(world, 1)),
-                       0.5 * (wall_stress(world, 2) + wall_stress(world, 3)),
-                       0.5 * (wall_stress(world, 4) + wall_stress(world, 5))};
-    out.unbalanced_ratio = world.unbalanced_force_ratio();
-    out.converged = stresses_ok(world, g) && out.unbalanced_ratio < g.equilibrium_ratio;
-    out.radius_growth = growth;
-    out.steps = world.step_count();
+    const std::int64_t dem_budget = std::min(kDemSteps, std::max<std::int64_t>(1, g.max_steps - out.relax_iterations));
+    const World world = check_with_world(position, radius, box, g, dem_budget);
+    position = {}, radius = {};
+    report(world, g, out);
+    out.converged = relaxed && stresses_ok(world, g) && out.unbalanced_ratio <= g.equilibrium_ratio;
+    out.radius_growth = 1.0;
     out.grains.diameters.clear();
     out.grains.diameters.shrink_to_fit();
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+std::string convergence_failure(const Packing& k, const SpecimenSpec& spec) {
+    if (k.converged) return {};
+    const GenesisSpec& g = spec.genesis;
+    std::ostringstream out;
+    out << "genesis did not converge within genesis.max_steps = " << g.max_steps << " (" << k.relax_iterations
+        << " minimisation iterations, " << k.steps << " DEM steps): wall stresses x/y/z " << k.wall_stress.x * 1e-6 << " / "
+        << k.wall_stress.y * 1e-6 << " / " << k.wall_stress.z * 1e-6 << " MPa (target " << g.locked_in_stress * 1e-6 << " MPa +- "
+        << 100 * g.stress_tolerance << " %), unbalanced-force ratio " << k.unbalanced_ratio << " (target <= " << g.equilibrium_ratio
+        << "); raise genesis.max_steps";
+    return out.str();
 }
 
 std::string describe(const Packing& k, const SpecimenSpec& spec) {
@@ -235,7 +288,8 @@ std::string describe(const Packing& k, const SpecimenSpec& spec) {
         << " percentage points; floaters " << 100 * k.floaters_before << " % -> " << 100 * k.floaters_after << " %\n";
     out << "genesis: locked-in stress x/y/z " << k.wall_stress.x * 1e-6 << " / " << k.wall_stress.y * 1e-6 << " / "
         << k.wall_stress.z * 1e-6 << " MPa, unbalanced-force ratio " << k.unbalanced_ratio << ", radii x" << k.radius_growth << ", " << k.steps
-        << " steps, " << k.seconds << " s" << (k.converged ? "" : " (NOT converged: tolerances not met)");
+        << " DEM steps after " << k.relax_iterations << " minimisation iterations, " << k.seconds << " s"
+        << (k.converged ? "" : " (NOT converged: tolerances not met)");
     return out.str();
 }
 

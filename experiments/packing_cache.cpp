@@ -115,7 +115,7 @@ void put_report(Writer& w, const Packing& k) {
     w.put(g.diameters), w.put(g.removed_fine_fraction), w.put(g.removed_coarse_fraction);
     w.put(g.sieve_sizes), w.put(g.target_passing), w.put(g.achieved_passing);
     w.put(g.max_deviation), w.put(g.d50), w.put(g.solid_volume);
-    w.put(k.steps), w.put(k.porosity), w.put(k.edge_over_d50), w.put(k.mean_coordination);
+    w.put(k.steps), w.put(k.relax_iterations), w.put(k.porosity), w.put(k.edge_over_d50), w.put(k.mean_coordination);
     w.put(k.floaters_before), w.put(k.floaters_after), w.put(k.wall_stress);
     w.put(k.unbalanced_ratio), w.put(k.radius_growth);
     w.put(static_cast<std::uint8_t>(k.converged ? 1 : 0)), w.put(k.seconds);
@@ -127,7 +127,7 @@ void get_report(Reader& r, Packing& k) {
     g.removed_fine_fraction = r.get<double>(), g.removed_coarse_fraction = r.get<double>();
     g.sieve_sizes = r.vector(), g.target_passing = r.vector(), g.achieved_passing = r.vector();
     g.max_deviation = r.get<double>(), g.d50 = r.get<double>(), g.solid_volume = r.get<double>();
-    k.steps = r.get<std::int64_t>(), k.porosity = r.get<double>(), k.edge_over_d50 = r.get<double>();
+    k.steps = r.get<std::int64_t>(), k.relax_iterations = r.get<std::int64_t>(), k.porosity = r.get<double>(), k.edge_over_d50 = r.get<double>();
     k.mean_coordination = r.get<double>(), k.floaters_before = r.get<double>(), k.floaters_after = r.get<double>();
     k.wall_stress = r.vec3();
     k.unbalanced_ratio = r.get<double>(), k.radius_growth = r.get<double>();
@@ -242,6 +242,7 @@ Packing load_or_generate(const lab::GradationCurve& curve, const SpecimenSpec& s
     if (was_cached) *was_cached = cached;
     if (cached) return load_packing(path, key);
     Packing packing = generate_packing(curve, spec);
+    if (!packing.converged) throw GenesisError(convergence_failure(packing, spec) + " (nothing cached)");
     save_packing(path, packing, key);
     return packing;
 }

@@ -19,7 +19,7 @@
 //   GrainSample: u64 n + n f64 diameters, f64 removed_fine, f64 removed_coarse,
 //                u64 n + n f64 sieve_sizes, u64 n + n f64 target_passing,
 //                u64 n + n f64 achieved_passing, f64 max_deviation, f64 d50, f64 solid_volume |
-//   i64 steps | f64 porosity, edge_over_d50, mean_coordination, floaters_before,
+//   i64 steps | i64 relax_iterations | f64 porosity, edge_over_d50, mean_coordination, floaters_before,
 //   floaters_after | wall_stress (3 f64) | f64 unbalanced_ratio, radius_growth |
 //   u8 converged | f64 seconds |
 //   u64 FNV-1a 64 of every byte before it.
@@ -34,8 +34,9 @@
 
 namespace gradem::exp {
 
-inline constexpr std::uint32_t kPackingFormatVersion = 1;
-inline constexpr std::uint32_t kGenesisAlgorithmVersion = 1;
+// Format 2: i64 relax_iterations after steps. Genesis 2: enthalpy minimisation + Morton order.
+inline constexpr std::uint32_t kPackingFormatVersion = 2;
+inline constexpr std::uint32_t kGenesisAlgorithmVersion = 2;
 
 /// A cache file that cannot be used; the message names the file and what is wrong.
 class PackingCacheError : public std::runtime_error {
@@ -63,7 +64,8 @@ void save_packing(const std::filesystem::path& path, const Packing& packing, std
 Packing load_packing(const std::filesystem::path& path, std::uint64_t expected_key);
 
 /// The cached packing of (curve, spec) in `cache_dir`, or a new one (generated and saved).
-/// A cache file that exists but cannot be used is an error (it is never silently replaced).
+/// A cache file that exists but cannot be used is an error (it is never silently replaced);
+/// a new packing that did not converge is a GenesisError and is not saved.
 Packing load_or_generate(const lab::GradationCurve& curve, const SpecimenSpec& spec,
                          const std::filesystem::path& cache_dir, bool* was_cached = nullptr);
 

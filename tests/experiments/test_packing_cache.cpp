@@ -44,6 +44,7 @@ Packing hand_packing() {
     k.grains.d50 = 0.28e-3;
     k.grains.solid_volume = 1.234e-9;
     k.steps = 123456;
+    k.relax_iterations = 654321;
     k.porosity = 0.41;
     k.edge_over_d50 = 12.5;
     k.mean_coordination = 4.7;
@@ -81,6 +82,7 @@ void require_identical(const Packing& a, const Packing& b) {
     CHECK(same_bits(a.grains.d50, b.grains.d50));
     CHECK(same_bits(a.grains.solid_volume, b.grains.solid_volume));
     CHECK(a.steps == b.steps);
+    CHECK(a.relax_iterations == b.relax_iterations);
     CHECK(same_bits(a.porosity, b.porosity));
     CHECK(same_bits(a.edge_over_d50, b.edge_over_d50));
     CHECK(same_bits(a.mean_coordination, b.mean_coordination));
