@@ -132,7 +132,9 @@ public:
 
     std::string fingerprint() const override {
         std::ostringstream f;
-        f << "dem cube model v1; genesis v" << exp::kGenesisAlgorithmVersion << "; format v" << exp::kPackingFormatVersion;
+        // v2: one dt per step (issue 9) changed every run's arithmetic; bump whenever the engine's
+        // results change on purpose, so the ledger never serves a run of another engine.
+        f << "dem cube model v2; genesis v" << exp::kGenesisAlgorithmVersion << "; format v" << exp::kPackingFormatVersion;
         for (const auto& curve : curves_) {
             exp::SpecimenSpec spec = base_.specimen;
             spec.seed = 0;  // seeds are part of each run key
