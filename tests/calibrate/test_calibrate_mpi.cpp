@@ -150,7 +150,7 @@ fs::path analytic_problem(const fs::path& dir, int max_runs, const std::string& 
                                    "[output]\ndir = \"out\"\n");
 }
 
-/// A tiny DEM problem: 1.5 mm cubes of ~120 grains, one sand, two seeds, packings cached in
+/// A tiny DEM problem: 1.8 mm cubes of ~110 grains, one sand, two seeds, packings cached in
 /// `dir`/cache; four runs (start and rescaled point).
 fs::path dem_problem(const fs::path& dir) {
     std::ifstream in(test::calibration_base_config());
@@ -167,7 +167,8 @@ fs::path dem_problem(const fs::path& dir) {
     replace("\"../../out/packing-cache\"", "\"cache\"");
     replace("min_diameter_mm = 0.149", "min_diameter_mm = 0.25");
     replace("max_diameter_mm = 0.8", "max_diameter_mm = 0.5");
-    replace("edge_mm = 2.5", "edge_mm = 1.5");
+    replace("edge_mm = 2.5", "edge_mm = 1.8");
+    replace("target_solid_fraction = 0.60", "target_solid_fraction = 0.52");  // a box ~5 grains wide jams loose
     test::write_text(dir / "base.toml", base);
     const nlohmann::json stat = {{"n", 3}, {"mean", 1.0}, {"std", 0.1}};
     nlohmann::json lab = {{"schema", "gradem-lab-results/1"}, {"representative_data", true}, {"note", "test targets"},
