@@ -224,6 +224,20 @@ def case_study(args, browser, work):
         if kind == "gradation_effect":
             shot = os.path.join(work, "study-gradation_effect.png")
             shutil.copy(this, shot)
+    # A failed run (the stand-in never fails, so one is marked failed in a copy of study.json):
+    # `gradem report study` lists it with the runner's reason, and the failed card counts it.
+    failed = os.path.join(work, "study-with-a-failed-run")
+    shutil.copytree(os.path.join(work, "study-gradation_effect"), failed)
+    study_path = os.path.join(failed, "study.json")
+    study = json.load(open(study_path, encoding="utf-8"))
+    study["cases"][0]["sands"][1]["runs"][0].update(status="failed", reason="timed out after 600 s")
+    study["runs"]["failed"] = 1
+    json.dump(study, open(study_path, "w", encoding="utf-8"))
+    r = run([args.gradem, "report", "study", failed])
+    check(r.returncode == 0, f"gradem report study failed ({r.returncode}): {r.stderr[-500:]}")
+    text = open(os.path.join(failed, "report.html"), encoding="utf-8").read()
+    check(re.search(r'<tr class="bad">(<td[^>]*>[^<]*</td>){3}<td class="text">failed</td><td class="text">timed out after 600 s</td>', text),
+          f"{failed}/report.html: the failed run and its reason are not listed")
     return shot
 
 
