@@ -1,4 +1,4 @@
-// `gradem report <lab|compress|calibrate> <folder>`: (re)makes report.html from the outputs of
+// `gradem report <lab|compress|calibrate|study> <folder>`: (re)makes report.html from the outputs of
 // that command in <folder> — e.g. after installing python3-matplotlib, without re-running a long
 // calibration. The commands themselves call the same writer when they finish.
 // Exit codes: 0 written, 2 bad usage or a missing/garbled output file, 5 the report could not be
@@ -17,11 +17,11 @@ namespace gradem::app {
 int run_report(const std::vector<std::string>& args) {
     std::string kind_name, folder;
     CLI::App app{"(Re)make report.html from the outputs of a command in a folder.", "gradem report"};
-    app.add_option("kind", kind_name, "lab, compress or calibrate")->required();
+    app.add_option("kind", kind_name, "lab, compress, calibrate or study")->required();
     app.add_option("folder", folder, "the command's output folder")->required();
     parse_command(app, args);
     const auto kind = report::parse_report_kind(kind_name);
-    if (!kind) throw UsageError("report kind '" + kind_name + "': expected lab, compress or calibrate");
+    if (!kind) throw UsageError("report kind '" + kind_name + "': expected lab, compress, calibrate or study");
     const report::HtmlReportOutcome o = report::write_html_report(*kind, folder);
     if (o.written()) {
         std::cout << "report: " << o.path.lexically_normal().string() << "\n";

@@ -1,14 +1,17 @@
 // `gradem study <study.toml> [--out DIR] [--workers N]`: runs a parameter study
 // (calibrate/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
-// into its output folder. Milestones go to stderr, the answer to stdout.
+// into its output folder, then report.html (reports/html/study_report.py). Milestones go to
+// stderr, the answer and the report path to stdout.
 // Exit codes: 0 done, 2 bad usage, input or ledger, 4 every run failed.
 #include <cstdio>
+#include <iostream>
 #include <string>
 #include <vector>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "calibrate/study.hpp"
+#include "reports/html_report.hpp"
 
 namespace gradem::app {
 namespace {
@@ -45,6 +48,8 @@ int run_study(const std::vector<std::string>& args) {
     if (result.representative) std::printf("(the lab data are REPRESENTATIVE, not measurements)\n");
     for (const std::string& v : result.verdict) std::printf("%s\n", v.c_str());
     std::printf("results in %s\n", config.out_dir.c_str());
+    std::fflush(stdout);
+    report::write_html_report_or_warn(report::ReportKind::study, config.out_dir, std::cout);
     const bool ran = result.runs_executed + result.runs_from_ledger > 0;
     return ran && result.runs_failed == result.runs_executed + result.runs_from_ledger ? 4 : 0;
 }

@@ -115,12 +115,13 @@ const char* to_string(ReportKind kind) {
         case ReportKind::lab: return "lab";
         case ReportKind::compress: return "compress";
         case ReportKind::calibrate: return "calibrate";
+        case ReportKind::study: return "study";
     }
     return "?";
 }
 
 std::optional<ReportKind> parse_report_kind(std::string_view name) {
-    for (ReportKind k : {ReportKind::lab, ReportKind::compress, ReportKind::calibrate})
+    for (ReportKind k : {ReportKind::lab, ReportKind::compress, ReportKind::calibrate, ReportKind::study})
         if (name == to_string(k)) return k;
     return std::nullopt;
 }

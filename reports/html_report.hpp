@@ -1,5 +1,5 @@
 #pragma once
-// HTML reports: `gradem lab`, `gradem compress` and `gradem calibrate` end by writing
+// HTML reports: `gradem lab`, `gradem compress`, `gradem calibrate` and `gradem study` end by writing
 // report.html next to their CSV/JSON files — one self-contained page (inline SVG figures, inline
 // CSS, no external files, opens offline). The page is made from those files only, by the Python
 // generator in reports/html/ (matplotlib, run on /usr/bin/python3; embedded in the binary at
@@ -18,7 +18,7 @@
 
 namespace gradem::report {
 
-enum class ReportKind { lab, compress, calibrate };
+enum class ReportKind { lab, compress, calibrate, study };
 
 const char* to_string(ReportKind kind);
 std::optional<ReportKind> parse_report_kind(std::string_view name);

@@ -43,6 +43,12 @@ def new_figure(panels=1, width=10.0, height=4.2, **kwargs):
     return fig, list(axes[0])
 
 
+def new_grid(rows, cols, width=10.0, height=6.0, **kwargs):
+    """A figure with rows × cols axes; returns (fig, 2-D array of axes)."""
+    fig, axes = plt.subplots(rows, cols, figsize=(width, height), squeeze=False, **kwargs)
+    return fig, axes
+
+
 def message_panel(ax, text):
     """A panel that says why it has no data (the figure count stays fixed)."""
     ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes, color="#5b6475", wrap=True)

@@ -2,7 +2,7 @@
 
     /usr/bin/python3 make_report.py KIND OUT_DIR [TEMP_FILE]
 
-KIND is lab, compress or calibrate; OUT_DIR holds that command's CSV/JSON outputs. The page is
+KIND is lab, compress, calibrate or study; OUT_DIR holds that command's CSV/JSON outputs. The page is
 written to TEMP_FILE (the caller renames it into place: reports/html_report.cpp) or, without
 TEMP_FILE, to OUT_DIR/report.html through a temporary file and a rename. The `gradem` binary
 carries these files (embedded at build time) and runs them this way at the end of each command.
@@ -16,7 +16,7 @@ import sys
 
 EXIT_BAD_INPUT = 2
 EXIT_NO_MATPLOTLIB = 3
-KINDS = ("lab", "compress", "calibrate")
+KINDS = ("lab", "compress", "calibrate", "study")
 
 
 def main(argv):
@@ -35,7 +35,9 @@ def main(argv):
     import lab_report
     import compress_report
     import calibrate_report
-    builders = {"lab": lab_report.build, "compress": compress_report.build, "calibrate": calibrate_report.build}
+    import study_report
+    builders = {"lab": lab_report.build, "compress": compress_report.build, "calibrate": calibrate_report.build,
+                "study": study_report.build}
     try:
         text = builders[kind](out_dir)
     except InputError as e:

@@ -34,6 +34,7 @@ table { border-collapse: collapse; margin: 8px 0 6px; font-size: 13.5px; }
 th, td { border-bottom: 1px solid var(--line); padding: 4px 10px; text-align: right; vertical-align: top; white-space: nowrap; }
 th { background: var(--card); font-weight: bold; white-space: normal; }
 td.text, th.text { text-align: left; }
+td.wrap { white-space: normal; min-width: 240px; text-align: left; }
 tr.bad td { background: #fdecea; }
 p.tablecaption { color: var(--muted); font-size: 13px; margin: 2px 0 14px; }
 ul.notes li { margin: 3px 0; }
@@ -96,10 +97,11 @@ class Page:
         self.blocks.append(f'<figure class="report-figure" id="figure-{n}">{svg}'
                            f"<figcaption><b>Figure {n}. {esc(title)}.</b> {esc(caption)}</figcaption></figure>")
 
-    def table(self, headers, rows, caption=None, text_columns=(0,), bad_rows=()):
+    def table(self, headers, rows, caption=None, text_columns=(0,), bad_rows=(), wrap_columns=()):
         """headers: column titles; rows: lists of cells (already formatted); text_columns are
-        left-aligned; rows whose index is in bad_rows are highlighted."""
-        cls = lambda k: ' class="text"' if k in text_columns else ""
+        left-aligned; wrap_columns (long sentences) wrap; rows whose index is in bad_rows are
+        highlighted."""
+        cls = lambda k: ' class="wrap"' if k in wrap_columns else ' class="text"' if k in text_columns else ""
         out = ['<div class="table-wrap"><table><thead><tr>']
         out += [f"<th{cls(k)}>{esc(h)}</th>" for k, h in enumerate(headers)]
         out.append("</tr></thead><tbody>")

@@ -9,11 +9,13 @@ without a browser: missing python3 or matplotlib, bad input, no half-written or 
 
     /usr/bin/python3 test_html_reports.py CASE --gradem BUILD/app/gradem --source SOURCE_DIR
 
-CASE: checker | lab | compress | calibrate | failures. Exit 0 pass, 1 fail, 77 skipped (no
+CASE: checker | lab | compress | calibrate | study | failures. Exit 0 pass, 1 fail, 77 skipped (no
 chromium; with GRADEM_REQUIRE_BROWSER=1 a missing browser is a failure instead).
 """
 
 import argparse
+import html
+import json
 import os
 import re
 import shutil
@@ -23,6 +25,8 @@ import tempfile
 
 SKIP = 77
 EXPECTED_FIGURES = {"lab": 3, "compress": 4, "calibrate": 4}
+# figures of the study report per study kind (reports/html/study_report.py)
+STUDY_FIGURES = {"gradation_effect": 2, "sensitivity": 1, "resolution": 1, "fines_truncation": 2, "model_form": 2}
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync", "--hide-scrollbars",
                   "--host-resolver-rules=MAP * ~NOTFOUND", "--enable-logging=stderr", "--v=0"]
@@ -79,8 +83,8 @@ def screenshot_stats(png):
     return float(np.mean(np.abs(grey - background) > 0.08)), float(grey.std())
 
 
-def check_page_in_browser(browser, page, work, figures, banner):
-    dom, console, shot = open_in_browser(browser, page, work)
+def check_page_in_browser(browser, page, work, figures, banner, height=5000):
+    dom, console, shot = open_in_browser(browser, page, work, height)
     check(not console, f"{page}: the browser console is not empty:\n  " + "\n  ".join(console[:10]))
     declared = re.search(r'data-figures="(\d+)"', dom)
     rendered = re.search(r'data-figures-rendered="(\d+)"', dom)
@@ -153,7 +157,8 @@ def case_lab(args, browser, work):
     return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["lab"], banner=True)
 
 
-def case_calibrate(args, browser, work):
+def make_calibration(args, work):
+    """A calibration with the closed-form stand-in model (seconds); returns (output folder, stdout)."""
     lab = make_lab(args, work)
     config = os.path.join(work, "analytic.toml")
     out = os.path.join(work, "calibration")
@@ -172,10 +177,68 @@ dir = "{out}"
 ''')
     r = run([args.gradem, "calibrate", config])
     check(r.returncode == 0, f"gradem calibrate failed ({r.returncode}): {r.stderr[-800:]}")
+    return out, r.stdout
+
+
+def case_calibrate(args, browser, work):
+    out, stdout = make_calibration(args, work)
     page = os.path.join(out, "report.html")
-    check(r.stdout.rstrip().endswith(f"report: {page}"), f"gradem calibrate does not end with its report's path: {r.stdout[-300:]}")
+    check(stdout.rstrip().endswith(f"report: {page}"), f"gradem calibrate does not end with its report's path: {stdout[-300:]}")
     check_self_contained(page)
     return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["calibrate"], banner=True)
+
+
+def case_study(args, browser, work):
+    """Every study kind on the closed-form stand-in (the stand-in ignores the specimen, so the
+    edge and fines sweeps run in milliseconds): `gradem study` ends with its report's path, and
+    each page has its kind's figures, rendered, the study's verdict and the banner (the lab data
+    the calibration was fitted to are the representative ones)."""
+    calibration, _ = make_calibration(args, work)
+    # model_form compares calibrations: the same one under a second name will do for the page.
+    second = os.path.join(work, "calibration-copy")
+    os.makedirs(second)
+    shutil.copy(os.path.join(calibration, "summary.json"), second)
+    keys = {"resolution": "edges_mm = [2.5, 3.5, 5.0]", "fines_truncation": "min_diameters_mm = [0.106, 0.149, 0.25]"}
+    shot = None
+    for kind, figures in STUDY_FIGURES.items():
+        out = os.path.join(work, f"study-{kind}")
+        config = os.path.join(work, f"{kind}.toml")
+        with open(config, "w") as f:
+            if kind == "model_form":
+                f.write(f'[study]\nkind = "model_form"\ncalibrations = ["{calibration}/summary.json", "{second}/summary.json"]\n')
+            else:
+                f.write(f'[study]\nkind = "{kind}"\ncalibration = "{calibration}/summary.json"\nseeds = [11, 12, 13]\n'
+                        f'{keys.get(kind, "")}\n[run]\nworkers = 2\n')
+            f.write(f'[output]\ndir = "{out}"\n')
+        r = run([args.gradem, "study", config])
+        check(r.returncode == 0, f"gradem study ({kind}) failed ({r.returncode}): {r.stderr[-800:]}")
+        page = os.path.join(out, "report.html")
+        check(r.stdout.rstrip().endswith(f"report: {page}"), f"gradem study ({kind}) does not end with its report's path: {r.stdout[-300:]}")
+        check_self_contained(page)
+        verdict = json.load(open(os.path.join(out, "study.json"), encoding="utf-8"))["verdict"]
+        text = open(page, encoding="utf-8").read()
+        check(verdict and all(html.escape(v.replace(" -> ", " → ")) in text for v in verdict),
+              f"{page}: the study's verdict is not on the page")
+        # The study pages are shorter than the others: a 2000-px window keeps the blank check fair.
+        this = check_page_in_browser(browser, page, work, figures, banner=True, height=2000)
+        if kind == "gradation_effect":
+            shot = os.path.join(work, "study-gradation_effect.png")
+            shutil.copy(this, shot)
+    # A failed run (the stand-in never fails, so one is marked failed in a copy of study.json):
+    # `gradem report study` lists it with the runner's reason, and the failed card counts it.
+    failed = os.path.join(work, "study-with-a-failed-run")
+    shutil.copytree(os.path.join(work, "study-gradation_effect"), failed)
+    study_path = os.path.join(failed, "study.json")
+    study = json.load(open(study_path, encoding="utf-8"))
+    study["cases"][0]["sands"][1]["runs"][0].update(status="failed", reason="timed out after 600 s")
+    study["runs"]["failed"] = 1
+    json.dump(study, open(study_path, "w", encoding="utf-8"))
+    r = run([args.gradem, "report", "study", failed])
+    check(r.returncode == 0, f"gradem report study failed ({r.returncode}): {r.stderr[-500:]}")
+    text = open(os.path.join(failed, "report.html"), encoding="utf-8").read()
+    check(re.search(r'<tr class="bad">(<td[^>]*>[^<]*</td>){3}<td class="text">failed</td><td class="text">timed out after 600 s</td>', text),
+          f"{failed}/report.html: the failed run and its reason are not listed")
+    return shot
 
 
 def case_compress(args, browser, work):
@@ -258,12 +321,12 @@ def case_failures(args, browser, work):
           f"garbled curves.csv: exit {r.returncode}: {r.stderr[-400:]}")
     check(leftovers(lab) == [], f"report files left after bad input: {leftovers(lab)}")
     r = run([args.gradem, "report", "nonsense", lab])
-    check(r.returncode == 2 and "expected lab, compress or calibrate" in r.stderr, f"bad kind: {r.returncode} {r.stderr[-300:]}")
+    check(r.returncode == 2 and "expected lab, compress, calibrate or study" in r.stderr, f"bad kind: {r.returncode} {r.stderr[-300:]}")
 
 
 CASES = {"checker": case_checker, "lab": case_lab, "compress": case_compress, "calibrate": case_calibrate,
-         "failures": case_failures}
-NEEDS_BROWSER = {"checker", "lab", "compress", "calibrate"}
+         "study": case_study, "failures": case_failures}
+NEEDS_BROWSER = {"checker", "lab", "compress", "calibrate", "study"}
 
 
 def main():
