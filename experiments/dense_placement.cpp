@@ -56,7 +56,7 @@ struct DensePacker::Sums {
 };
 
 DensePacker::DensePacker(const std::vector<double>& diameters, double edge, double modulus, std::uint64_t seed)
-    : modulus_(modulus), box_{edge, edge, edge}, search_(make_cell_grid_search()) {
+    : modulus_(modulus), box_{edge, edge, edge}, search_(make_neighbor_search()) {
     if (diameters.empty()) throw std::invalid_argument("DensePacker: no grains");
     const std::size_t n = diameters.size();
     r_.resize(n), m_.resize(n), x_.resize(n), v_.assign(n, Vec3{}), f_.assign(n, Vec3{});
