@@ -28,7 +28,7 @@ def main(argv):
         import matplotlib  # noqa: F401
         import numpy  # noqa: F401
     except ImportError as e:
-        print(f"gradem report: python3 cannot import {e.name} ({sys.executable})", file=sys.stderr)
+        print(f"python3 cannot import {e.name} ({sys.executable})", file=sys.stderr)
         return EXIT_NO_MATPLOTLIB
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from inputs import InputError
@@ -41,7 +41,7 @@ def main(argv):
     try:
         text = builders[kind](out_dir)
     except InputError as e:
-        print(f"gradem report: {e}", file=sys.stderr)
+        print(f"{e}", file=sys.stderr)
         return EXIT_BAD_INPUT
     target = argv[3] if len(argv) == 4 else os.path.join(out_dir, "report.html")
     temp = target if len(argv) == 4 else f"{target}.tmp.{os.getpid()}"
