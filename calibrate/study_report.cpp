@@ -51,7 +51,8 @@ std::string markdown(const StudyResult& r) {
     if (r.representative) md << "> **The lab data are REPRESENTATIVE, not measurements.**\n\n";
     md << "- calibration: ";
     for (std::size_t k = 0; k < r.calibration_summaries.size(); ++k) md << (k ? ", " : "") << r.calibration_summaries[k];
-    md << "\n- packing seeds per sand: " << r.config.seeds.size() << "\n- DEM runs: " << r.runs_executed << " run now, "
+    if (r.config.kind != StudyKind::model_form) md << "\n- packing seeds per sand: " << r.config.seeds.size();
+    md << "\n- DEM runs: " << r.runs_executed << " run now, "
        << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed; wall time " << report::clock_text(r.wall_seconds)
        << "\n\n## Answer\n\n";
     for (const std::string& v : r.verdict) md << "- " << v << "\n";
