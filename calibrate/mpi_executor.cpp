@@ -31,6 +31,9 @@ using wire::Kind;
 /// MPI_Abort, not finalize.
 bool g_rank_lost = false;
 
+/// How long MPI_Abort may take before rank 0 exits on its own (s).
+constexpr int kAbortWatchdogSeconds = 10;
+
 struct Message {
     int source = 0;
     std::string bytes;
@@ -115,6 +118,14 @@ Session::~Session() {
         std::fprintf(stderr, "gradem: a worker rank did not answer; ending the job with MPI_Abort (a lost rank cannot "
                              "finalize); every finished run is in the ledger\n");
         std::fflush(stderr);
+        // Open MPI 4.1's MPI_Abort can itself hang (its abort message to mpirun races; seen once
+        // in CI under load: "ORTE_ERROR_LOG: Data unpack would read past end of buffer in
+        // show_help.c"). A watchdog ends this process if mpirun has not killed it within
+        // kAbortWatchdogSeconds; mpirun then ends the job as for any rank that exits unfinalized.
+        std::thread([] {
+            std::this_thread::sleep_for(std::chrono::seconds(kAbortWatchdogSeconds));
+            std::_Exit(5);
+        }).detach();
         MPI_Abort(MPI_COMM_WORLD, 5);
     }
     MPI_Finalize();
