@@ -23,13 +23,13 @@
 #include "calibrate/mpi_executor.hpp"
 #endif
 #include "calibrate/report.hpp"
-#include "reports/clock_text.hpp"
+#include "common/clock_text.hpp"
 #include "reports/html_report.hpp"
 
 namespace gradem::app {
 namespace {
 
-using report::clock_text;
+using common::clock_text;
 
 struct CalibrateOptions {
     std::string config, out;

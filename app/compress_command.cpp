@@ -18,17 +18,17 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/progress_line.hpp"
+#include "common/clock_text.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_output.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/packing_cache.hpp"
-#include "reports/clock_text.hpp"
 #include "reports/html_report.hpp"
 
 namespace gradem::app {
 namespace {
 
-using report::clock_text;
+using common::clock_text;
 
 using Clock = std::chrono::steady_clock;
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "common/clock_text.hpp"
 #include "experiments/axial_loading.hpp"
-#include "reports/clock_text.hpp"
 
 namespace gradem::app {
 
@@ -38,9 +38,9 @@ public:
         const double end = std::min(max_strain_, std::max(2.0 * peak_strain_, p.platen_strain));
         const double eta = rate > 0.0 ? (end - p.platen_strain) / rate : std::nan("");
         std::fprintf(stderr, "%s%s: %s  strain %.5f  stress %.3f MPa  peak %.3f MPa  breaks %lld  ETA %s%s",
-                     tty_ ? "\r" : "", label_.c_str(), report::clock_text(elapsed).c_str(), p.platen_strain,
+                     tty_ ? "\r" : "", label_.c_str(), common::clock_text(elapsed).c_str(), p.platen_strain,
                      p.stress * 1e-6, peak * 1e-6, static_cast<long long>(p.broken_tension + p.broken_shear),
-                     report::clock_text(eta).c_str(), tty_ ? "   " : "\n");
+                     common::clock_text(eta).c_str(), tty_ ? "   " : "\n");
         printed_ = true;
     }
 

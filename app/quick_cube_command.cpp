@@ -10,10 +10,10 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "common/atomic_file.hpp"
 #include "core/parallel.hpp"
 #include "experiments/platen_compression.hpp"
 #include "experiments/quick_packing.hpp"
-#include "reports/atomic_file.hpp"
 
 namespace gradem::app {
 namespace {
@@ -95,7 +95,7 @@ int run_quick_cube(const std::vector<std::string>& args) {
     std::printf("  wall time            %.2f s (%.3g particle-steps/s)\n", r.wall_seconds,
                 static_cast<double>(world.particles().size()) * static_cast<double>(r.steps) / r.wall_seconds);
     if (!o.out.empty()) {
-        report::write_file_atomically(o.out + "/load_curve.csv", curve_csv(r));
+        common::write_file_atomically(o.out + "/load_curve.csv", curve_csv(r));
         std::printf("  curve written to     %s/load_curve.csv\n", o.out.c_str());
     }
     return r.diverged ? 3 : 0;

@@ -9,10 +9,10 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/genesis.hpp"
 #include "experiments/packing_cache.hpp"
-#include "lab_data/input_error.hpp"
 
 namespace gradem::app {
 namespace {
@@ -53,7 +53,7 @@ int run_specimen(const std::vector<std::string>& args) {
     bool cached = false;
     if (o.show) {
         if (!std::filesystem::exists(path))
-            throw lab::InputError(o.config, 0, "no cached packing for this config (expected " + path.string() +
+            throw common::InputError(o.config, 0, "no cached packing for this config (expected " + path.string() +
                                                    "): run `gradem specimen " + o.config + "` first");
         packing = exp::load_packing(path, key);
         cached = true;

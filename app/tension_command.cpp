@@ -19,13 +19,13 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/progress_line.hpp"
+#include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_output.hpp"
 #include "experiments/packing_cache.hpp"
 #include "experiments/tension_config.hpp"
 #include "experiments/tension_output.hpp"
 #include "experiments/tension_test.hpp"
-#include "lab_data/input_error.hpp"
 
 namespace gradem::app {
 namespace {
@@ -66,7 +66,7 @@ std::optional<exp::CompressionReference> compression_beside(const exp::CubeConfi
     if (!fs::exists(beside)) return std::nullopt;
     try {
         return exp::read_compression_reference(beside, c, packing);
-    } catch (const lab::InputError& e) {
+    } catch (const common::InputError& e) {
         std::fprintf(stderr, "tension: no σc/σt: %s\n", e.what());
         return std::nullopt;
     }

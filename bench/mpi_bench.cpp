@@ -13,6 +13,7 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/mpi_executor.hpp"
 #include "calibrate/run_message.hpp"
+#include "common/hash.hpp"
 
 using namespace gradem;
 using Clock = std::chrono::steady_clock;
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
             [&](cal::CubeModel& model, cal::mpi::MpiExecutor& executor) {
                 executor.prepare({1, 2}, {});
                 cal::RunRequest q{0, 1, exp::MaterialParams{}};
-                cal::wire::Run request{1, cal::code_version(), cal::fnv1a_hex(model.fingerprint()), 600.0, q};
+                cal::wire::Run request{1, cal::code_version(), common::fnv1a_hex(model.fingerprint()), 600.0, q};
                 const std::size_t run_bytes = cal::wire::encode(request).size();
                 const std::size_t result_bytes = cal::wire::encode(cal::wire::Result{1, model.run(q, 0.0)}).size();
                 auto noop = [](std::size_t, const cal::RunOutcome&, const cal::RunPlace&) {};

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "calibrate/ledger.hpp"
+#include "common/hash.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -56,7 +57,7 @@ std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem) {
 }
 
 std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model) {
-    return fnv1a_hex(problem.describe() + "\n" + model.fingerprint());
+    return common::fnv1a_hex(problem.describe() + "\n" + model.fingerprint());
 }
 
 CalibrationResult run_calibration(const CalibrationProblem& problem, CubeModel& model,

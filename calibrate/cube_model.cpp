@@ -50,15 +50,4 @@ std::string material_key(const exp::MaterialParams& m) {
     return key;
 }
 
-std::string fnv1a_hex(const std::string& text) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char ch : text) {
-        h ^= ch;
-        h *= 1099511628211ull;
-    }
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-}
-
 }  // namespace gradem::cal

@@ -69,7 +69,4 @@ std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise =
 /// The exact text of the material's fields (hex floats), for keys and fingerprints.
 std::string material_key(const exp::MaterialParams& m);
 
-/// 64-bit FNV-1a of a text, as 16 hex digits.
-std::string fnv1a_hex(const std::string& text);
-
 }  // namespace gradem::cal

@@ -10,8 +10,8 @@
 
 #include "calibrate/cube_model.hpp"
 #include "calibrate/thread_pool.hpp"
+#include "common/input_error.hpp"
 #include "experiments/packing_cache.hpp"
-#include "lab_data/input_error.hpp"
 
 namespace gradem::cal {
 namespace {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "common/hash.hpp"
+
 namespace gradem::cal {
 namespace {
 
@@ -28,7 +30,7 @@ double Evaluator::seconds() const {
 }
 
 std::string Evaluator::run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed) const {
-    return fnv1a_hex(fingerprint_ + "|sand " + problem_.sands[sand] + "|seed " + std::to_string(seed) + "|" + material_key(m));
+    return common::fnv1a_hex(fingerprint_ + "|sand " + problem_.sands[sand] + "|seed " + std::to_string(seed) + "|" + material_key(m));
 }
 
 std::string Evaluator::parameters_json(const std::vector<double>& values) const {

@@ -20,6 +20,7 @@
 
 #include "calibrate/ledger.hpp"
 #include "calibrate/run_message.hpp"
+#include "common/hash.hpp"
 
 namespace gradem::cal::mpi {
 namespace {
@@ -145,7 +146,7 @@ int serve(CubeModel* model, const std::string& load_error, const WorkerIdentity&
 #endif
     hello.error = model || !load_error.empty() ? load_error : "no model";
     send(0, Kind::hello, wire::encode(hello));
-    const std::string model_hash = fnv1a_hex(hello.model_fingerprint);
+    const std::string model_hash = common::fnv1a_hex(hello.model_fingerprint);
     auto refuse = [&](const std::string& why) { send(0, Kind::stop, wire::encode(wire::Stop{where(rank, hello.host) + ": " + why})); };
     while (true) {
         const Message m = *wait_message(0, 0.0);
@@ -211,7 +212,7 @@ void dismiss_workers(const std::string& reason, double timeout_s) {
 // ---- rank 0 ------------------------------------------------------------------------------
 
 MpiExecutor::MpiExecutor(CubeModel& model, int threads, double handshake_timeout_s)
-    : model_(model), threads_(std::max(1, threads)), model_hash_(fnv1a_hex(model.fingerprint())),
+    : model_(model), threads_(std::max(1, threads)), model_hash_(common::fnv1a_hex(model.fingerprint())),
       handshake_timeout_s_(handshake_timeout_s) {
     const int n = world_size();
     for (int r = 1; r < n; ++r) workers_.push_back({r, "?", 1, false, false});

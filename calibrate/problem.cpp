@@ -9,16 +9,16 @@
 #include <set>
 #include <sstream>
 
+#include "common/input_error.hpp"
+#include "common/toml_section.hpp"
 #include "experiments/material_table.hpp"
-#include "experiments/toml_section.hpp"
-#include "lab_data/input_error.hpp"
 
 namespace gradem::cal {
 namespace {
 
 namespace fs = std::filesystem;
-using lab::InputError;
-using namespace exp::toml_io;
+using common::InputError;
+using namespace common::toml_io;
 
 const std::vector<std::string> kTables = {"calibration", "targets", "parameters", "solver", "run", "output"};
 const std::vector<std::string> kDefaultFree = {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"};

@@ -12,7 +12,7 @@
 //
 // Targets are never typed in: they are the per-sand mean and standard deviation of the chord
 // modulus, peak stress and strain at peak in the lab results file. Every error is a
-// lab::InputError naming the file, line and key.
+// common::InputError naming the file, line and key.
 #include <cstdint>
 #include <filesystem>
 #include <string>

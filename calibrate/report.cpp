@@ -5,31 +5,28 @@
 #include <sstream>
 
 #include "calibrate/objective.hpp"
+#include "common/atomic_file.hpp"
+#include "common/clock_text.hpp"
+#include "common/json_number.hpp"
+#include "common/number_format.hpp"
 #include "experiments/material_table.hpp"
-#include "reports/atomic_file.hpp"
-#include "reports/clock_text.hpp"
 
 namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
-using report::clock_text;
+using common::json_number;
+using common::clock_text;
 
 constexpr double kMetTolerance = 0.05;  // a target counts as met within 5 % of the lab mean
 
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 /// Display scale and unit of a quantity.
 double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
 const char* unit(Quantity q) { return q == Quantity::strain ? "-" : "MPa"; }
 const char* label(Quantity q) { return q == Quantity::modulus ? "chord modulus" : q == Quantity::peak ? "peak stress" : "strain at peak"; }
 
-std::string fmt(double v, int digits = 4) {
-    if (!std::isfinite(v)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
+std::string fmt(double v, int digits = 4) { return common::format_significant(v, digits); }
 
 std::string pct(double v) {
     if (!std::isfinite(v)) return "-";
@@ -122,9 +119,9 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
             j["scale"] = spec.log_scale ? "log" : "linear";
             const Uncertainty& u = st.uncertainty;
             if (u.computed) {
-                j["std_error"] = spec.log_scale ? json{{"relative", number(u.std_error_natural[k])}}
-                                                : json{{"absolute", number(u.std_error_natural[k])}};
-                j["one_sigma_interval"] = {number(u.low[k]), number(u.high[k])};
+                j["std_error"] = spec.log_scale ? json{{"relative", json_number(u.std_error_natural[k])}}
+                                                : json{{"absolute", json_number(u.std_error_natural[k])}};
+                j["one_sigma_interval"] = {json_number(u.low[k]), json_number(u.high[k])};
             }
         }
         out.push_back(j);
@@ -169,10 +166,10 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
     json targets = json::array();
     for (const TargetRow& r : target_rows(p, st))
         targets.push_back({{"sand", r.sand}, {"role", r.role}, {"quantity", to_string(r.q)}, {"unit", unit(r.q)},
-                           {"lab_mean", number(r.lab.mean * display(r.q))}, {"lab_std", number(r.lab.std * display(r.q))},
-                           {"lab_n", r.lab.n}, {"sim_mean", number(r.sim_mean * display(r.q))},
-                           {"sim_std", number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", number(r.rel_error)},
-                           {"z", number(r.z)}, {"met", std::isfinite(r.rel_error) && std::fabs(r.rel_error) <= kMetTolerance}});
+                           {"lab_mean", json_number(r.lab.mean * display(r.q))}, {"lab_std", json_number(r.lab.std * display(r.q))},
+                           {"lab_n", r.lab.n}, {"sim_mean", json_number(r.sim_mean * display(r.q))},
+                           {"sim_std", json_number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", json_number(r.rel_error)},
+                           {"z", json_number(r.z)}, {"met", std::isfinite(r.rel_error) && std::fabs(r.rel_error) <= kMetTolerance}});
     const SolveResult& s = st.solution;
     const Uncertainty& u = st.uncertainty;
     json j = {{"label", st.label},
@@ -185,14 +182,14 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
               {"targets", targets},
               {"noise_floor_rel_se", {{"modulus", st.noise_floor[0]}, {"peak_stress", st.noise_floor[1]}, {"strain_at_peak", st.noise_floor[2]}}},
               {"identifiability", {{"computed", u.computed}, {"note", u.note}, {"singular_values", u.singular_values},
-                                   {"condition_number", number(u.condition)}, {"poorly_identified", u.poorly_identified},
+                                   {"condition_number", json_number(u.condition)}, {"poorly_identified", u.poorly_identified},
                                    {"difference_runs", u.fd_runs}}},
               {"notes", s.notes},
               {"unmet_targets", unmet_statements(p, st)}};
     json d = json::array();
     for (const ShapeIndexRow& row : shape_index_rows(p, st))
-        d.push_back({{"sand", row.sand}, {"role", row.role}, {"lab", number(row.lab)}, {"simulated", number(row.sim)},
-                     {"rel_error", number(row.sim / row.lab - 1.0)}});
+        d.push_back({{"sand", row.sand}, {"role", row.role}, {"lab", json_number(row.lab)}, {"simulated", json_number(row.sim)},
+                     {"rel_error", json_number(row.sim / row.lab - 1.0)}});
     j["shape_index_d"] = d;
     if (s.homogeneity.done)
         j["homogeneity"] = {{"holds", s.homogeneity.holds}, {"alpha", s.homogeneity.alpha}, {"beta", s.homogeneity.beta},
@@ -408,10 +405,10 @@ std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r
 }
 
 void write_calibration_outputs(const CalibrationProblem& p, const CalibrationResult& r) {
-    report::write_file_atomically(p.out_dir / "summary.json", summary_json(p, r).dump(2) + "\n");
-    report::write_file_atomically(p.out_dir / "summary.md", summary_markdown(p, r));
-    report::write_file_atomically(p.out_dir / "convergence.csv", convergence_csv(p, r));
-    report::write_file_atomically(p.out_dir / "curves.csv", curves_csv(p, r));
+    common::write_file_atomically(p.out_dir / "summary.json", summary_json(p, r).dump(2) + "\n");
+    common::write_file_atomically(p.out_dir / "summary.md", summary_markdown(p, r));
+    common::write_file_atomically(p.out_dir / "convergence.csv", convergence_csv(p, r));
+    common::write_file_atomically(p.out_dir / "curves.csv", curves_csv(p, r));
 }
 
 }  // namespace gradem::cal

@@ -12,14 +12,15 @@
 #include "calibrate/evaluator.hpp"
 #include "calibrate/ledger.hpp"
 #include "calibrate/study_kinds.hpp"
-#include "lab_data/input_error.hpp"
+#include "common/hash.hpp"
+#include "common/input_error.hpp"
 #include "lab_data/statistics.hpp"
 
 namespace gradem::cal {
 namespace {
 
 namespace fs = std::filesystem;
-using lab::InputError;
+using common::InputError;
 using nlohmann::json;
 
 double output_of(const RunOutcome& r, Quantity q) {
@@ -141,7 +142,7 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
 
 StudyRunner::StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log)
     : config_(config), log_(std::move(log)),
-      ledger_(std::make_unique<Ledger>(config.ledger, fnv1a_hex(config.describe()), config.describe())) {
+      ledger_(std::make_unique<Ledger>(config.ledger, common::fnv1a_hex(config.describe()), config.describe())) {
     if (const auto rows = ledger_->size()) say("ledger " + config.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
 }
 

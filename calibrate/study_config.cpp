@@ -4,15 +4,15 @@
 #include <cmath>
 #include <sstream>
 
-#include "experiments/toml_section.hpp"
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
+#include "common/toml_section.hpp"
 
 namespace gradem::cal {
 namespace {
 
 namespace fs = std::filesystem;
-using lab::InputError;
-using namespace exp::toml_io;
+using common::InputError;
+using namespace common::toml_io;
 
 const std::vector<std::string> kTables = {"study", "run", "output"};
 

@@ -18,7 +18,7 @@
 //                     change from the finest case
 //   sensitivity       one-at-a-time elasticities d ln(property) / d ln(parameter), with seeds
 //   model_form        calibrations of different bond models side by side (reads summaries)
-// Every error is a lab::InputError naming the file, line and key.
+// Every error is a common::InputError naming the file, line and key.
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -7,20 +7,22 @@
 #include <fstream>
 
 #include "calibrate/study_kinds.hpp"
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
+#include "common/json_number.hpp"
+#include "common/number_format.hpp"
 
 namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
-using lab::InputError;
+using common::json_number;
+using common::InputError;
 
 double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
 const char* label(Quantity q) {
     return q == Quantity::modulus ? "chord modulus" : q == Quantity::peak ? "peak stress" : "strain at peak";
 }
 const char* unit(Quantity q) { return q == Quantity::strain ? "-" : "MPa"; }
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 std::string interval_text(const Interval& i, double scale) {
     if (!std::isfinite(i.low)) return fmt_num(i.estimate * scale) + " [n < 2]";
@@ -28,7 +30,7 @@ std::string interval_text(const Interval& i, double scale) {
 }
 
 json interval_json(const Interval& i, double scale) {
-    return {{"estimate", number(i.estimate * scale)}, {"low", number(i.low * scale)}, {"high", number(i.high * scale)}};
+    return {{"estimate", json_number(i.estimate * scale)}, {"low", json_number(i.low * scale)}, {"high", json_number(i.high * scale)}};
 }
 
 bool excludes_zero(const Interval& i) { return std::isfinite(i.low) && (i.low > 0.0 || i.high < 0.0); }
@@ -68,10 +70,10 @@ StudyTable case_table(const std::string& title, const std::string& x_name, const
 json case_samples_json(const StudyCase& c) {
     json sands = json::array();
     for (std::size_t s = 0; s < c.sands.size(); ++s) {
-        json j = {{"sand", c.sands[s]}, {"particles", c.mean_particles(s)}, {"wall_seconds_per_run", number(c.mean_wall_seconds(s))}};
+        json j = {{"sand", c.sands[s]}, {"particles", c.mean_particles(s)}, {"wall_seconds_per_run", json_number(c.mean_wall_seconds(s))}};
         for (Quantity q : kQuantities) {
             const Sample m = c.sample(s, q);
-            j[to_string(q)] = {{"mean", number(m.mean * display(q))}, {"std", number(m.std * display(q))}, {"n", m.n}, {"unit", unit(q)}};
+            j[to_string(q)] = {{"mean", json_number(m.mean * display(q))}, {"std", json_number(m.std * display(q))}, {"n", m.n}, {"unit", unit(q)}};
         }
         sands.push_back(j);
     }
@@ -80,12 +82,7 @@ json case_samples_json(const StudyCase& c) {
 
 }  // namespace
 
-std::string fmt_num(double v, int digits) {
-    if (!std::isfinite(v)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
+std::string fmt_num(double v, int digits) { return common::format_significant(v, digits); }
 
 std::string mean_pm(double mean, double std, int digits) {
     if (!std::isfinite(mean)) return "-";
@@ -117,8 +114,8 @@ void run_gradation_effect(const CalibratedPoint& point, StudyRunner& runner, Stu
                                        interval_text(sim, k), interval_text(lab, k), verdict}});
                 pairs.push_back({{"quantity", to_string(q)}, {"unit", unit(q)}, {"sand_a", p.sands[a]}, {"sand_b", p.sands[b]},
                                  {"simulated", interval_json(sim, k)}, {"lab", interval_json(lab, k)},
-                                 {"simulated_a", {{"mean", number(sa.mean * k)}, {"std", number(sa.std * k)}, {"n", sa.n}}},
-                                 {"simulated_b", {{"mean", number(sb.mean * k)}, {"std", number(sb.std * k)}, {"n", sb.n}}},
+                                 {"simulated_a", {{"mean", json_number(sa.mean * k)}, {"std", json_number(sa.std * k)}, {"n", sa.n}}},
+                                 {"simulated_b", {{"mean", json_number(sb.mean * k)}, {"std", json_number(sb.std * k)}, {"n", sb.n}}},
                                  {"lab_a", {{"mean", ta.mean * k}, {"std", ta.std * k}, {"n", ta.n}}},
                                  {"lab_b", {{"mean", tb.mean * k}, {"std", tb.std * k}, {"n", tb.n}}},
                                  {"verdict", verdict}});

@@ -5,15 +5,16 @@
 
 #include "calibrate/ledger.hpp"
 #include "calibrate/study_kinds.hpp"
-#include "reports/atomic_file.hpp"
-#include "reports/clock_text.hpp"
+#include "common/atomic_file.hpp"
+#include "common/clock_text.hpp"
+#include "common/json_number.hpp"
 
 namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
+using common::json_number;
 
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json runs_json(const StudyResult& r) {
     json cases = json::array();
@@ -24,8 +25,8 @@ json runs_json(const StudyResult& r) {
             for (std::size_t k = 0; k < c.runs[s].size(); ++k) {
                 const RunOutcome& o = c.runs[s][k];
                 runs.push_back({{"seed", k < r.config.seeds.size() ? r.config.seeds[k] : 0}, {"status", to_string(o.status)},
-                                {"reason", o.reason}, {"modulus_mpa", number(o.modulus_pa * 1e-6)}, {"peak_mpa", number(o.peak_pa * 1e-6)},
-                                {"strain_at_peak", number(o.strain_at_peak)}, {"particles", o.particles}, {"bonds", o.bonds},
+                                {"reason", o.reason}, {"modulus_mpa", json_number(o.modulus_pa * 1e-6)}, {"peak_mpa", json_number(o.peak_pa * 1e-6)},
+                                {"strain_at_peak", json_number(o.strain_at_peak)}, {"particles", o.particles}, {"bonds", o.bonds},
                                 {"steps", o.steps}, {"wall_seconds", o.wall_seconds}});
             }
             sands.push_back({{"sand", c.sands[s]}, {"runs", runs}});
@@ -53,7 +54,7 @@ std::string markdown(const StudyResult& r) {
     for (std::size_t k = 0; k < r.calibration_summaries.size(); ++k) md << (k ? ", " : "") << r.calibration_summaries[k];
     if (r.config.kind != StudyKind::model_form) md << "\n- packing seeds per sand: " << r.config.seeds.size();
     md << "\n- DEM runs: " << r.runs_executed << " run now, "
-       << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed; wall time " << report::clock_text(r.wall_seconds)
+       << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed; wall time " << common::clock_text(r.wall_seconds)
        << "\n\n## Answer\n\n";
     for (const std::string& v : r.verdict) md << "- " << v << "\n";
     for (const StudyTable& t : r.tables) {
@@ -103,9 +104,9 @@ void write_study_outputs(const StudyResult& r) {
                     {"data", r.data},
                     {"tables", tables_json(r)},
                     {"cases", runs_json(r)}};
-    report::write_file_atomically(r.config.out_dir / "study.json", j.dump(2) + "\n");
-    report::write_file_atomically(r.config.out_dir / "study.md", markdown(r));
-    report::write_file_atomically(r.config.out_dir / "runs.csv", runs_csv(r));
+    common::write_file_atomically(r.config.out_dir / "study.json", j.dump(2) + "\n");
+    common::write_file_atomically(r.config.out_dir / "study.md", markdown(r));
+    common::write_file_atomically(r.config.out_dir / "runs.csv", runs_csv(r));
 }
 
 }  // namespace gradem::cal

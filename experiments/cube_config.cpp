@@ -10,10 +10,10 @@
 #include <toml++/toml.h>
 #include <vector>
 
+#include "common/input_error.hpp"
+#include "common/toml_section.hpp"
 #include "experiments/material_table.hpp"
-#include "experiments/toml_section.hpp"
 #include "lab_data/dataset.hpp"
-#include "lab_data/input_error.hpp"
 #include "lab_data/sieve_table.hpp"
 #include "lab_data/text.hpp"
 
@@ -21,8 +21,8 @@ namespace gradem::exp {
 namespace {
 
 namespace fs = std::filesystem;
-using lab::InputError;
-using namespace toml_io;
+using common::InputError;
+using namespace common::toml_io;
 
 constexpr double kMm = 1.0e-3, kMpa = 1.0e6, kGpa = 1.0e9;  // display unit -> SI
 

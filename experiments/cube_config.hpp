@@ -14,7 +14,7 @@
 //
 // Missing keys take the defaults of the structs (bond_modulus_gpa and bond_stiffness_ratio
 // default to the contact's values). Paths are relative to the config file. Unknown tables and
-// keys, wrong types and out-of-range values throw lab::InputError "file:line: key 'x' = v
+// keys, wrong types and out-of-range values throw common::InputError "file:line: key 'x' = v
 // violates rule" (the structs' own invalid_reason() supplies the rule).
 #include <filesystem>
 #include <string>
@@ -40,11 +40,11 @@ struct CubeConfig {
     int vtk_every = 0;                 ///< curve points between ParaView snapshots (0: the test's default)
 };
 
-/// Reads and validates a config file (see above). Throws lab::InputError.
+/// Reads and validates a config file (see above). Throws common::InputError.
 CubeConfig load_cube_config(const std::filesystem::path& toml_file);
 
 /// The gradation curve of the configured sand (dataset sand's sieve file, or sieve_csv).
-/// Throws lab::InputError naming the config file when the sand is not in the dataset, and the
+/// Throws common::InputError naming the config file when the sand is not in the dataset, and the
 /// readers' InputError for a bad dataset or sieve file.
 lab::GradationCurve load_gradation(const CubeConfig& config);
 

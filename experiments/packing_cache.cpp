@@ -8,7 +8,8 @@
 #include <iterator>
 #include <type_traits>
 
-#include "reports/atomic_file.hpp"
+#include "common/atomic_file.hpp"
+#include "common/hash.hpp"
 
 namespace gradem::exp {
 
@@ -19,21 +20,12 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'G', 'R', 'A', 'D', 'E', 'M', 'P', 'K'};
-constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
-constexpr std::uint64_t kFnvPrime = 1099511628211ull;
-
-std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h = kFnvOffset) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t k = 0; k < size; ++k) {
-        h ^= p[k];
-        h *= kFnvPrime;
-    }
-    return h;
-}
+using common::fnv1a;
+using common::hex16;
 
 // Hashes the raw bits of trivially copyable values (doubles by bit pattern, not by value).
 struct Hasher {
-    std::uint64_t h = kFnvOffset;
+    std::uint64_t h = common::kFnv1aOffset;
     template <typename T>
     void add(const T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -103,12 +95,6 @@ struct Reader {
     }
     std::vector<double> vector() { return doubles(get<std::uint64_t>()); }
 };
-
-std::string hex16(std::uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 void put_report(Writer& w, const Packing& k) {
     const GrainSample& g = k.grains;
@@ -208,7 +194,7 @@ std::string serialize_packing(const Packing& k, std::uint64_t key) {
 }
 
 void save_packing(const fs::path& path, const Packing& packing, std::uint64_t key) {
-    report::write_file_atomically(path, serialize_packing(packing, key));
+    common::write_file_atomically(path, serialize_packing(packing, key));
 }
 
 Packing load_packing(const fs::path& path, std::uint64_t expected_key) {

@@ -3,17 +3,17 @@
 #include <string>
 #include <toml++/toml.h>
 
-#include "experiments/toml_section.hpp"
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
+#include "common/toml_section.hpp"
 
 namespace gradem::exp {
 namespace {
 
 // "key 'tension.x' = v violates rule" at the key's line, from a validator's "Struct::x = v violates rule".
-[[noreturn]] void reject(toml_io::Context& ctx, const std::string& key, const std::string& reason) {
-    const toml_io::KeyInfo& info = ctx.keys[key];
+[[noreturn]] void reject(common::toml_io::Context& ctx, const std::string& key, const std::string& reason) {
+    const common::toml_io::KeyInfo& info = ctx.keys[key];
     const auto at = reason.find(" violates ");
-    throw lab::InputError(ctx.file, info.line,
+    throw common::InputError(ctx.file, info.line,
                           "key '" + key + "' = " + info.text + " violates " +
                               (at == std::string::npos ? reason : reason.substr(at + 10)));
 }
@@ -21,7 +21,7 @@ namespace {
 }  // namespace
 
 TensionConfig load_tension_config(const CubeConfig& config) {
-    using namespace toml_io;
+    using namespace common::toml_io;
     Context ctx;
     const toml::table root = parse_toml_file(config.file, ctx);
     TensionConfig t;
@@ -32,7 +32,7 @@ TensionConfig load_tension_config(const CubeConfig& config) {
     s.finish();
     if (auto why = t.spec.invalid_reason()) {
         // config.test was validated by load_cube_config: only the grips can be wrong here.
-        if (why->rfind("TensionTestSpec::grip_depth_fraction", 0) != 0) throw lab::InputError(ctx.file, 0, *why);
+        if (why->rfind("TensionTestSpec::grip_depth_fraction", 0) != 0) throw common::InputError(ctx.file, 0, *why);
         reject(ctx, "tension.grip_depth_fraction", *why);
     }
     if (!(t.auto_peak_strain > 0.0 && t.auto_peak_strain < 0.01))

@@ -3,7 +3,7 @@
 // the same specimen, material, loading, gauges and output), plus an optional [tension] table
 // for what only tension has (experiments/README.md lists the keys):
 //   [tension]   grip_depth_fraction, auto_peak_strain
-// Unknown keys, wrong types and out-of-range values throw lab::InputError "file:line: key
+// Unknown keys, wrong types and out-of-range values throw common::InputError "file:line: key
 // 'tension.x' = v violates rule", like the other tables.
 #include "experiments/cube_config.hpp"
 #include "experiments/tension_test.hpp"

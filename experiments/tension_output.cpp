@@ -5,17 +5,17 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "lab_data/input_error.hpp"
-#include "reports/atomic_file.hpp"
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+#include "common/json_number.hpp"
 
 namespace gradem::exp {
 namespace {
 
 using json = nlohmann::ordered_json;
+using common::json_number;
 
 constexpr double kMpa = 1.0e-6, kMm = 1.0e3;  // SI -> display unit
-
-json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 // The compression-format document of the tension result (cube_output's macro_json): the
 // blocks both tests share (reduction, run, breaks, warnings, material, specimen, rate check)
@@ -36,21 +36,21 @@ CompressionReference read_compression_reference(const std::filesystem::path& fil
                                                 const Packing& k) {
     const std::string name = file.string();
     std::ifstream in(file);
-    if (!in) throw lab::InputError(name, 0, "cannot read the compression macro.json");
+    if (!in) throw common::InputError(name, 0, "cannot read the compression macro.json");
     json doc;
     try {
         doc = json::parse(in);
     } catch (const json::exception& e) {
-        throw lab::InputError(name, 0, std::string("not a JSON file: ") + e.what());
+        throw common::InputError(name, 0, std::string("not a JSON file: ") + e.what());
     }
     if (!doc.is_object() || doc.contains("tensile_strength_mpa") || !doc.contains("peak_stress_mpa") ||
         !doc["peak_stress_mpa"].is_number())
-        throw lab::InputError(name, 0, "not the macro.json of a compression test (`gradem compress`): expected a "
+        throw common::InputError(name, 0, "not the macro.json of a compression test (`gradem compress`): expected a "
                                        "numeric peak_stress_mpa and no tensile_strength_mpa");
     const json mine = shared_document(TensionTestResult{}, c, k, 0.0, std::nullopt);  // material, specimen: no result needed
     for (const char* block : {"material", "specimen"})
         if (!doc.contains(block) || doc[block] != mine[block])
-            throw lab::InputError(name, 0, std::string("the compression test was run with another ") + block +
+            throw common::InputError(name, 0, std::string("the compression test was run with another ") + block +
                                                " than this tension test ('" + block +
                                                "' differs): run `gradem compress` on the same config");
     CompressionReference ref;
@@ -68,28 +68,28 @@ std::string tension_macro_json(const TensionTestResult& r, const CubeConfig& c, 
     json base = shared_document(r, c, k, strain_rate, rate_check);
     const lab::CurveReduction& m = r.cube.macro;
     json reduction = base["reduction"];
-    reduction["chord_lower_strain"] = num(r.chord_lower_strain);
+    reduction["chord_lower_strain"] = json_number<json>(r.chord_lower_strain);
     json compared = nullptr;
     double strength_ratio = std::nan("");
     if (compression) {
         strength_ratio = ratio(compression->peak_stress, m.peak_stress_pa);
         compared = {{"macro_json", compression->file.string()},
-                    {"peak_stress_mpa", num(compression->peak_stress * kMpa)},
-                    {"chord_modulus_mpa", num(compression->chord_modulus * kMpa)},
-                    {"strength_ratio_c_over_t", num(strength_ratio)},
-                    {"modulus_ratio_t_over_c", num(ratio(m.chord_modulus_pa, compression->chord_modulus))}};
+                    {"peak_stress_mpa", json_number<json>(compression->peak_stress * kMpa)},
+                    {"chord_modulus_mpa", json_number<json>(compression->chord_modulus * kMpa)},
+                    {"strength_ratio_c_over_t", json_number<json>(strength_ratio)},
+                    {"modulus_ratio_t_over_c", json_number<json>(ratio(m.chord_modulus_pa, compression->chord_modulus))}};
     }
     json j = {
         {"config", c.file.string()},
         {"test", "direct tension"},
         {"sign_convention", "tension positive: stress, strain at peak, moduli; lateral strain expansion positive"},
-        {"tensile_strength_mpa", num(m.peak_stress_pa * kMpa)},
-        {"strain_at_peak", num(m.strain_at_peak)},
-        {"strain_at_peak_platen", num(r.cube.strain_at_peak_platen)},
-        {"tensile_modulus_mpa", num(m.chord_modulus_pa * kMpa)},
-        {"tangent_modulus_mpa", num(m.tangent_modulus_pa * kMpa)},
-        {"poisson_ratio", num(m.poisson_ratio)},
-        {"strength_ratio_c_over_t", num(strength_ratio)},
+        {"tensile_strength_mpa", json_number<json>(m.peak_stress_pa * kMpa)},
+        {"strain_at_peak", json_number<json>(m.strain_at_peak)},
+        {"strain_at_peak_platen", json_number<json>(r.cube.strain_at_peak_platen)},
+        {"tensile_modulus_mpa", json_number<json>(m.chord_modulus_pa * kMpa)},
+        {"tangent_modulus_mpa", json_number<json>(m.tangent_modulus_pa * kMpa)},
+        {"poisson_ratio", json_number<json>(m.poisson_ratio)},
+        {"strength_ratio_c_over_t", json_number<json>(strength_ratio)},
         {"compression", compared},
         {"reduction", reduction},
         {"grips", {{"depth_fraction", spec.grip_depth_fraction},
@@ -97,8 +97,8 @@ std::string tension_macro_json(const TensionTestResult& r, const CubeConfig& c, 
                    {"reach_mm", r.grip_reach * kMm},
                    {"grains_bottom", r.grip_grains_bottom},
                    {"grains_top", r.grip_grains_top},
-                   {"max_slip_m", num(r.grip_slip)},
-                   {"max_spin_rad_s", num(r.grip_spin)}}},
+                   {"max_slip_m", json_number<json>(r.grip_slip)},
+                   {"max_spin_rad_s", json_number<json>(r.grip_spin)}}},
         {"run", base["run"]},
         {"broken_bonds", base["broken_bonds"]},
         {"warnings", base["warnings"]},
@@ -113,9 +113,9 @@ void write_tension_outputs(const std::filesystem::path& dir, const TensionTestRe
                            const TensionTestSpec& spec, const Packing& k, double strain_rate,
                            const std::optional<RateCheck>& rate_check,
                            const std::optional<CompressionReference>& compression) {
-    report::write_file_atomically(dir / "load_curve.csv", load_curve_csv(r.cube));
-    report::write_file_atomically(dir / "cracks.csv", cracks_csv(r.cube));
-    report::write_file_atomically(dir / "macro.json",
+    common::write_file_atomically(dir / "load_curve.csv", load_curve_csv(r.cube));
+    common::write_file_atomically(dir / "cracks.csv", cracks_csv(r.cube));
+    common::write_file_atomically(dir / "macro.json",
                                   tension_macro_json(r, c, spec, k, strain_rate, rate_check, compression));
 }
 

@@ -29,7 +29,7 @@ struct CompressionReference {
 
 /// Reads a compression macro.json and checks that it is of the same material and specimen as
 /// the tension run (its "material" and "specimen" blocks equal the ones this run writes).
-/// Throws lab::InputError naming the file and what differs or is missing.
+/// Throws common::InputError naming the file and what differs or is missing.
 CompressionReference read_compression_reference(const std::filesystem::path& macro_json_file, const CubeConfig& config,
                                                 const Packing& packing);
 

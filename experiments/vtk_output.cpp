@@ -8,7 +8,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "reports/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 namespace gradem::exp {
 
@@ -225,7 +225,7 @@ public:
 
     void write(const fs::path& path) {
         out_ += "</PolyData>\n</VTKFile>\n";
-        report::write_file_atomically(path, out_);
+        common::write_file_atomically(path, out_);
     }
 
 private:
@@ -428,7 +428,7 @@ void PvdSeries::write() const {
         out += "\"/>\n";
     }
     out += "</Collection>\n</VTKFile>\n";
-    report::write_file_atomically(pvd_path_, out);
+    common::write_file_atomically(pvd_path_, out);
 }
 
 }  // namespace gradem::exp

@@ -16,7 +16,7 @@
 // base64 block of [UInt64 byte count][raw little/native-endian values], encoded together
 // (header_type="UInt64", version="1.0", no compression). ascii writes the values as text,
 // doubles with 17 significant digits (exact round trip).
-// Every file is written through report::write_file_atomically: whole or not at all; the
+// Every file is written through common::write_file_atomically: whole or not at all; the
 // parent folder is created.
 #include <cstddef>
 #include <cstdint>

@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
 #include "lab_data/units.hpp"
 
 namespace gradem::lab {

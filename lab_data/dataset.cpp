@@ -6,7 +6,7 @@
 #include <set>
 #include <toml++/toml.h>
 
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
 #include "lab_data/text.hpp"
 
 namespace gradem::lab {

@@ -2,8 +2,8 @@
 
 #include <array>
 
+#include "common/input_error.hpp"
 #include "lab_data/block_parser.hpp"
-#include "lab_data/input_error.hpp"
 
 namespace gradem::lab {
 namespace {

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <optional>
 
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
 #include "lab_data/lab_output.hpp"
 #include "lab_data/text.hpp"
 

@@ -1,13 +1,12 @@
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 
-#include "lab_data/input_error.hpp"
+#include "common/atomic_file.hpp"
+#include "common/input_error.hpp"
+#include "common/number_format.hpp"
 #include "lab_data/lab_output.hpp"
 
 namespace gradem::lab {
@@ -15,19 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string f(double v, int decimals) {
-    if (!std::isfinite(v)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
-}
-
-std::string g(double v) {
-    if (!std::isfinite(v)) return "";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.8g", v);
-    return buf;
-}
+/// Tables: `decimals` after the point, "-" when missing; CSV cells: 8 significant digits, empty when missing.
+std::string f(double v, int decimals) { return common::format_fixed(v, decimals); }
+std::string g(double v) { return common::format_significant(v, 8, ""); }
 
 std::string csv_text(const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -137,34 +126,6 @@ void print_cubes(std::ostream& out, const LabStats& lab) {
     }
 }
 
-void write_atomically(const std::vector<std::pair<fs::path, std::string>>& files) {
-    std::vector<fs::path> temps;
-    auto cleanup = [&] {
-        std::error_code ec;
-        for (const auto& t : temps) fs::remove(t, ec);
-    };
-    for (const auto& [path, content] : files) {
-        fs::path tmp = path;
-        tmp += ".tmp-" + std::to_string(::getpid());
-        temps.push_back(tmp);
-        std::ofstream o(tmp, std::ios::binary);
-        o << content;
-        o.close();
-        if (!o) {
-            cleanup();
-            throw InputError(tmp.string(), 0, "cannot write file");
-        }
-    }
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        std::error_code ec;
-        fs::rename(temps[i], files[i].first, ec);
-        if (ec) {
-            cleanup();
-            throw InputError(files[i].first.string(), 0, "cannot rename the temporary file into place: " + ec.message());
-        }
-    }
-}
-
 }  // namespace
 
 std::string cubes_csv(const LabStats& lab) {
@@ -253,7 +214,7 @@ void write_lab_outputs(const fs::path& dir, const LabStats& lab) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw InputError(dir.string(), 0, "cannot create output directory: " + ec.message());
-    write_atomically({{dir / "lab_results.json", lab_stats_to_json(lab).dump(2) + "\n"},
+    common::write_files_atomically({{dir / "lab_results.json", lab_stats_to_json(lab).dump(2) + "\n"},
                       {dir / "cubes.csv", cubes_csv(lab)},
                       {dir / "sand_stats.csv", sand_stats_csv(lab)},
                       {dir / "gradation.csv", gradation_csv(lab)},

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
 #include "lab_data/text.hpp"
 
 namespace gradem::lab {

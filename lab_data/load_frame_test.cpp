@@ -6,8 +6,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "common/input_error.hpp"
 #include "lab_data/channel_roles.hpp"
-#include "lab_data/input_error.hpp"
 #include "lab_data/units.hpp"
 
 namespace gradem::lab {

@@ -18,8 +18,8 @@
 #include <limits>
 #include <sstream>
 
+#include "common/input_error.hpp"
 #include "lab_data/block_parser.hpp"
-#include "lab_data/input_error.hpp"
 #include "lab_data/text.hpp"
 
 namespace gradem::lab {

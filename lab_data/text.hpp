@@ -9,20 +9,14 @@
 #include <string_view>
 #include <vector>
 
+#include "common/text_file.hpp"
+
 namespace gradem::lab {
 
-/// Bytes of a file decoded to UTF-8, with the encoding that was detected.
-struct DecodedText {
-    std::string utf8;
-    std::string encoding;  ///< "utf-8", "utf-8 (BOM)", "utf-16le (BOM)", "utf-16be (BOM)", "windows-1252"
-};
-
-/// UTF-8 BOM is stripped; UTF-16 with BOM is transcoded; bytes that are not valid UTF-8 are read
-/// as Windows-1252 (a superset of Latin-1, what MTS 793 writes with sCode=A).
-DecodedText decode_text(std::string_view bytes);
-
-/// Reads a whole file; throws InputError(file, 0, ...) when it cannot be opened.
-std::string read_file_bytes(const std::filesystem::path& path);
+// Decoding and reading whole files live in common/ (config files read the same way).
+using common::DecodedText;
+using common::decode_text;
+using common::read_file_bytes;
 
 /// Splits on "\n", "\r\n" or "\r". The views point into `text`, line i is file line i + 1.
 std::vector<std::string_view> split_lines(std::string_view text);

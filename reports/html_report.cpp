@@ -13,7 +13,7 @@
 #include <system_error>
 #include <vector>
 
-#include "reports/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "reports/html_report_scripts.hpp"
 
 extern char** environ;
@@ -144,7 +144,7 @@ HtmlReportOutcome write_html_report(ReportKind kind, const fs::path& out_dir) {
     try {
         const ScratchDir scratch;
         for (const EmbeddedScript& s : html_report_scripts())
-            write_file_atomically(scratch.path / std::string(s.name), std::string(s.text));
+            common::write_file_atomically(scratch.path / std::string(s.name), std::string(s.text));
         const fs::path log = scratch.path / "generator.log";
         const int rc = run_process({python.string(), "-B", "-E", "-s", (scratch.path / "make_report.py").string(), to_string(kind),
                                     out_dir.string(), temp.string()},

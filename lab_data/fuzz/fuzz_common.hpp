@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "common/input_error.hpp"
 #include "lab_data/curve_reduction.hpp"
-#include "lab_data/input_error.hpp"
 #include "lab_data/load_frame_test.hpp"
 
 namespace gradem::lab::fuzz {

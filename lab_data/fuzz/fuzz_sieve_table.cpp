@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "common/input_error.hpp"
 #include "lab_data/c144.hpp"
-#include "lab_data/input_error.hpp"
 #include "lab_data/sieve_table.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

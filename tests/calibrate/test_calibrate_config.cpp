@@ -7,7 +7,7 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate_fixture.hpp"
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;
@@ -59,7 +59,7 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
     for (const Case& c : cases) {
         DYNAMIC_SECTION(c.name) {
             const fs::path cfg = test::write_problem(dir.path, c.calibration, c.rest);
-            REQUIRE_THROWS_AS(cal::load_calibration_problem(cfg), lab::InputError);
+            REQUIRE_THROWS_AS(cal::load_calibration_problem(cfg), common::InputError);
             // Named: the config file, or for a target the lab results file it points to.
             REQUIRE_THROWS_WITH(cal::load_calibration_problem(cfg), (Contains(cfg.string()) || Contains("lab_results.json")) &&
                                                                         Contains(c.expected));
@@ -159,7 +159,7 @@ TEST_CASE("bond model of a calibration: chosen, its parameters checked, part of 
         for (const Case& c : cases) {
             DYNAMIC_SECTION(c.name) {
                 const fs::path cfg = test::write_problem(dir.path, c.calibration, c.rest);
-                REQUIRE_THROWS_AS(cal::load_calibration_problem(cfg), lab::InputError);
+                REQUIRE_THROWS_AS(cal::load_calibration_problem(cfg), common::InputError);
                 REQUIRE_THROWS_WITH(cal::load_calibration_problem(cfg), Contains(cfg.string()) && Contains(c.expected));
             }
         }

@@ -7,8 +7,8 @@
 #include "calibrate/report.hpp"
 #include "calibrate/study.hpp"
 #include "calibrate_fixture.hpp"
+#include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
-#include "lab_data/input_error.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;
@@ -42,7 +42,7 @@ std::string error_of(const fs::path& toml) {
     try {
         const cal::StudyConfig c = cal::load_study_config(toml);
         cal::run_study(c);
-    } catch (const lab::InputError& e) {
+    } catch (const common::InputError& e) {
         return e.what();
     }
     return "";

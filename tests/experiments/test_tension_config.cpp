@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_output.hpp"
 #include "experiments/tension_config.hpp"
 #include "experiments/tension_output.hpp"
-#include "lab_data/input_error.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;
@@ -39,7 +39,7 @@ void require_rejected(const fs::path& file, int line, std::initializer_list<std:
     try {
         (void)load_tension_config(load_cube_config(file));
         FAIL("accepted " << file);
-    } catch (const lab::InputError& e) {
+    } catch (const common::InputError& e) {
         INFO(e.what());
         CHECK(e.line() == line);
         CHECK_THAT(e.what(), Contains(file.string()));

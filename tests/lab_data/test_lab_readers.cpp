@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "common/input_error.hpp"
 #include "lab_data/export_readers.hpp"
-#include "lab_data/input_error.hpp"
 #include "lab_data/load_frame_test.hpp"
 #include "lab_data/sieve_table.hpp"
 #include "lab_data/text.hpp"

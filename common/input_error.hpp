@@ -1,12 +1,12 @@
 #pragma once
-// Errors at the lab-file boundary (style.md §8.5): every problem with a user's file is an
-// InputError whose message starts with "file:line: " (or "file: " when no line applies), so
-// the user can jump straight to the offending cell.
+// Errors at the input boundary (style.md §8.5): every problem with a user's file (lab export,
+// sieve table, config, study) is an InputError whose message starts with "file:line: " (or
+// "file: " when no line applies), so the user can jump straight to the offending cell or key.
 
 #include <stdexcept>
 #include <string>
 
-namespace gradem::lab {
+namespace gradem::common {
 
 class InputError : public std::runtime_error {
 public:
@@ -29,4 +29,10 @@ private:
 /// "column 'Axial Force': " — the prefix used for every cell-level message.
 inline std::string column_prefix(const std::string& column) { return "column '" + column + "': "; }
 
+}  // namespace gradem::common
+
+// lab_data's readers name these unqualified (lab::InputError is the same type, not a copy).
+namespace gradem::lab {
+using common::column_prefix;
+using common::InputError;
 }  // namespace gradem::lab

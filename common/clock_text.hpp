@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-namespace gradem::report {
+namespace gradem::common {
 
 inline std::string clock_text(double seconds) {
     if (!std::isfinite(seconds) || seconds < 0) return "?";
@@ -15,4 +15,4 @@ inline std::string clock_text(double seconds) {
     return buf;
 }
 
-}  // namespace gradem::report
+}  // namespace gradem::common

@@ -2,7 +2,7 @@
 // Typed, validating reads of one TOML table, shared by the config readers (cube configs,
 // calibration problems). A Section remembers every key asked for, records where each value
 // came from (line, text as written, or "(default)") for error messages, and finish() rejects
-// keys nobody asked for. Errors are lab::InputError "file:line: key 'table.key' = v ...".
+// keys nobody asked for. Errors are common::InputError "file:line: key 'table.key' = v ...".
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -13,12 +13,12 @@
 #include <vector>
 #include <toml++/toml.h>
 
-#include "lab_data/input_error.hpp"
+#include "common/input_error.hpp"
 
-namespace gradem::exp::toml_io {
+namespace gradem::common::toml_io {
 
 namespace fs = std::filesystem;
-using lab::InputError;
+using common::InputError;
 
 inline int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
 
@@ -154,4 +154,4 @@ toml::table parse_toml_file(const fs::path& file, Context& ctx);
 /// Throws InputError naming unknown top-level tables or keys (the known ones are listed).
 void check_tables(const Context& ctx, const toml::table& root, const std::vector<std::string>& known_tables);
 
-}  // namespace gradem::exp::toml_io
+}  // namespace gradem::common::toml_io

@@ -1,15 +1,15 @@
-#include "experiments/toml_section.hpp"
+#include "common/toml_section.hpp"
 
 #include <algorithm>
 
-#include "lab_data/text.hpp"
+#include "common/text_file.hpp"
 
-namespace gradem::exp::toml_io {
+namespace gradem::common::toml_io {
 
 toml::table parse_toml_file(const fs::path& file, Context& ctx) {
     ctx.file = file.string();
     ctx.dir = fs::absolute(file).parent_path();
-    const std::string text = lab::decode_text(lab::read_file_bytes(file)).utf8;
+    const std::string text = decode_text(read_file_bytes(file)).utf8;
     try {
         return toml::parse(text, ctx.file);
     } catch (const toml::parse_error& e) {
@@ -28,4 +28,4 @@ void check_tables(const Context& ctx, const toml::table& root, const std::vector
     }
 }
 
-}  // namespace gradem::exp::toml_io
+}  // namespace gradem::common::toml_io
