@@ -22,8 +22,8 @@
 #ifdef GRADEM_HAVE_MPI
 #include "calibrate/mpi_executor.hpp"
 #endif
-#include "calibrate/report.hpp"
 #include "common/clock_text.hpp"
+#include "reports/calibration_report.hpp"
 #include "reports/html_report.hpp"
 
 namespace gradem::app {

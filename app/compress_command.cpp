@@ -20,9 +20,9 @@
 #include "app/progress_line.hpp"
 #include "common/clock_text.hpp"
 #include "experiments/cube_config.hpp"
-#include "experiments/cube_output.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/packing_cache.hpp"
+#include "reports/cube_output.hpp"
 #include "reports/html_report.hpp"
 
 namespace gradem::app {

@@ -8,8 +8,8 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/lab_command.hpp"
 #include "core/openmp_policy.hpp"
-#include "lab_data/lab_command.hpp"
 
 namespace {
 

@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "calibrate/study.hpp"
 #include "reports/html_report.hpp"
+#include "reports/study_report.hpp"
 
 namespace gradem::app {
 namespace {

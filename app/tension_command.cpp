@@ -21,11 +21,11 @@
 #include "app/progress_line.hpp"
 #include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
-#include "experiments/cube_output.hpp"
 #include "experiments/packing_cache.hpp"
 #include "experiments/tension_config.hpp"
-#include "experiments/tension_output.hpp"
 #include "experiments/tension_test.hpp"
+#include "reports/cube_output.hpp"
+#include "reports/tension_output.hpp"
 
 namespace gradem::app {
 namespace {

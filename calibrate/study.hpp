@@ -80,7 +80,4 @@ struct StudyResult {
 
 StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log = {});
 
-/// study.json, study.md and runs.csv in config.out_dir, each written atomically.
-void write_study_outputs(const StudyResult& result);
-
 }  // namespace gradem::cal

@@ -18,7 +18,7 @@
 
 #include "calibrate/calibration.hpp"
 #include "calibrate/mpi_executor.hpp"
-#include "calibrate/report.hpp"
+#include "reports/calibration_report.hpp"
 
 using namespace gradem;
 

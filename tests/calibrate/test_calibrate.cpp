@@ -14,9 +14,9 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/objective.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/report.hpp"
 #include "calibrate_fixture.hpp"
 #include "experiments/cube_config.hpp"
+#include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;

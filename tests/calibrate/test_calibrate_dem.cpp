@@ -2,8 +2,8 @@
 // at known parameters on other packing seeds; the scaling path must recover them.
 #include <catch2/catch.hpp>
 
-#include "calibrate/report.hpp"
 #include "calibrate_fixture.hpp"
+#include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;

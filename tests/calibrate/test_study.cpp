@@ -4,11 +4,12 @@
 #include <cmath>
 #include <fstream>
 
-#include "calibrate/report.hpp"
 #include "calibrate/study.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
+#include "reports/calibration_report.hpp"
+#include "reports/study_report.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;

@@ -17,8 +17,8 @@
 
 #include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
-#include "experiments/cube_output.hpp"
 #include "experiments/material_table.hpp"
+#include "reports/cube_output.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;

@@ -13,9 +13,9 @@
 
 #include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
-#include "experiments/cube_output.hpp"
 #include "experiments/tension_config.hpp"
-#include "experiments/tension_output.hpp"
+#include "reports/cube_output.hpp"
+#include "reports/tension_output.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;

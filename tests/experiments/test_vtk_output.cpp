@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "core/world.hpp"
-#include "experiments/vtk_output.hpp"
+#include "reports/vtk_output.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "lab_data/lab_command.hpp"
-#include "lab_data/lab_output.hpp"
+#include "app/lab_command.hpp"
 #include "lab_data/lab_stats.hpp"
 #include "lab_data/text.hpp"
+#include "reports/lab_report.hpp"
 
 using namespace gradem::lab;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "calibrate/report.hpp"
+#include "reports/calibration_report.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include <cmath>
 
 #include "common/json_number.hpp"
-#include "lab_data/lab_output.hpp"
+#include "reports/lab_report.hpp"
 
 namespace gradem::lab {
 namespace {

@@ -1,4 +1,4 @@
-#include "lab_data/lab_command.hpp"
+#include "app/lab_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -7,8 +7,8 @@
 #include <optional>
 
 #include "common/input_error.hpp"
-#include "lab_data/lab_output.hpp"
 #include "lab_data/text.hpp"
+#include "reports/lab_report.hpp"
 
 namespace gradem::lab {
 namespace {

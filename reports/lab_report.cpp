@@ -7,7 +7,7 @@
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
 #include "common/number_format.hpp"
-#include "lab_data/lab_output.hpp"
+#include "reports/lab_report.hpp"
 
 namespace gradem::lab {
 namespace {

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "experiments/cube_config.hpp"
-#include "experiments/cube_output.hpp"
 #include "experiments/tension_test.hpp"
+#include "reports/cube_output.hpp"
 
 namespace gradem::exp {
 

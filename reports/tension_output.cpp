@@ -1,4 +1,4 @@
-#include "experiments/tension_output.hpp"
+#include "reports/tension_output.hpp"
 
 #include <cmath>
 #include <fstream>

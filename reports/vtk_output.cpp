@@ -1,4 +1,4 @@
-#include "experiments/vtk_output.hpp"
+#include "reports/vtk_output.hpp"
 
 #include <algorithm>
 #include <array>

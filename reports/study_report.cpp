@@ -1,5 +1,7 @@
 // study.json (everything, for figures and scripts), study.md (the tables and the verdict for
 // people) and runs.csv (one row per run) of a `gradem study`, each written atomically.
+#include "reports/study_report.hpp"
+
 #include <cmath>
 #include <sstream>
 

@@ -1,4 +1,4 @@
-#include "experiments/cube_output.hpp"
+#include "reports/cube_output.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "common/atomic_file.hpp"
 #include "common/json_number.hpp"
 #include "experiments/material_table.hpp"
-#include "experiments/vtk_output.hpp"
+#include "reports/vtk_output.hpp"
 
 namespace gradem::exp {
 namespace {

@@ -1,0 +1,10 @@
+#pragma once
+// The result files of a `gradem study` (reports/study_report.cpp).
+#include "calibrate/study.hpp"
+
+namespace gradem::cal {
+
+/// study.json, study.md and runs.csv in config.out_dir, each written atomically.
+void write_study_outputs(const StudyResult& result);
+
+}  // namespace gradem::cal
