@@ -2,15 +2,24 @@
 // (calibrate/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
 // into its output folder, then report.html (reports/html/study_report.py). Milestones go to
 // stderr, the answer and the report path to stdout.
-// Exit codes: 0 done, 2 bad usage, input or ledger, 4 every run failed.
+// Under an MPI launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) rank 0 runs the
+// study and ranks 1..N-1 run its cube tests, as for gradem calibrate
+// (calibrate/study_models.hpp); the answer is the same as with threads.
+// Exit codes: 0 done, 2 bad usage, input, ledger or MPI setup, 4 every run failed.
 #include <cstdio>
 #include <iostream>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "calibrate/study.hpp"
+#include "calibrate/study_models.hpp"
+#ifdef GRADEM_HAVE_MPI
+#include "calibrate/mpi_executor.hpp"
+#endif
 #include "reports/html_report.hpp"
 #include "reports/study_report.hpp"
 
@@ -32,10 +41,7 @@ StudyOptions parse_study(const std::vector<std::string>& args) {
     return o;
 }
 
-}  // namespace
-
-int run_study(const std::vector<std::string>& args) {
-    const StudyOptions o = parse_study(args);
+cal::StudyConfig load_config(const StudyOptions& o) {
     cal::StudyConfig config = cal::load_study_config(o.file);
     if (!o.out.empty()) {
         const bool default_ledger = config.ledger == config.out_dir / "ledger.sqlite";
@@ -43,8 +49,14 @@ int run_study(const std::vector<std::string>& args) {
         if (default_ledger) config.ledger = config.out_dir / "ledger.sqlite";
     }
     if (o.workers) config.workers = o.workers;
-    const cal::StudyResult result =
-        cal::run_study(config, [](const std::string& line) { std::fprintf(stderr, "study: %s\n", line.c_str()); });
+    return config;
+}
+
+void say(const std::string& line) { std::fprintf(stderr, "study: %s\n", line.c_str()); }
+
+/// Runs the study (on `execution`'s executor if given), writes its outputs and the answer.
+int study_and_report(const cal::StudyConfig& config, const cal::StudyExecution* execution) {
+    const cal::StudyResult result = cal::run_study(config, say, execution);
     cal::write_study_outputs(result);
     if (result.representative) std::printf("(the lab data are REPRESENTATIVE, not measurements)\n");
     for (const std::string& v : result.verdict) std::printf("%s\n", v.c_str());
@@ -53,6 +65,39 @@ int run_study(const std::vector<std::string>& args) {
     report::write_html_report_or_warn(report::ReportKind::study, config.out_dir, std::cout);
     const bool ran = result.runs_executed + result.runs_from_ledger > 0;
     return ran && result.runs_failed == result.runs_executed + result.runs_from_ledger ? 4 : 0;
+}
+
+}  // namespace
+
+int run_study(const std::vector<std::string>& args) {
+    const StudyOptions o = parse_study(args);
+#ifdef GRADEM_HAVE_MPI
+    if (cal::mpi::launched()) {
+        // Every rank reads the study and makes the models of all its cases; the workers serve
+        // them, rank 0 prepares them once (packings into the shared cache) and runs the study.
+        cal::StudyConfig config;
+        cal::StudyModels* models = nullptr;
+        return cal::mpi::run_job(
+            [&](int) {
+                config = load_config(o);
+                auto all = std::make_unique<cal::StudyModels>(cal::study_problems(config));
+                models = all.get();
+                return cal::mpi::JobModel{std::move(all), config.workers};
+            },
+            [&](cal::CubeModel&, cal::mpi::MpiExecutor& executor) {
+                say("runs on " + executor.describe());
+                executor.prepare(config.seeds, say);
+                const cal::StudyExecution execution{*models, executor};
+                return study_and_report(config, &execution);
+            });
+    }
+#else
+    // Several copies of a build without MPI would each run the whole study into one ledger.
+    if (cal::started_by_mpi_launcher())
+        throw std::runtime_error("this gradem was built without MPI (GRADEM_MPI=OFF or no Open MPI found): run it without mpirun, "
+                                 "or rebuild with libopenmpi-dev installed");
+#endif
+    return study_and_report(load_config(o), nullptr);
 }
 
 }  // namespace gradem::app

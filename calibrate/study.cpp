@@ -7,11 +7,14 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "calibrate/calibration.hpp"
 #include "calibrate/evaluator.hpp"
 #include "calibrate/ledger.hpp"
 #include "calibrate/study_kinds.hpp"
+#include "calibrate/study_models.hpp"
 #include "common/hash.hpp"
 #include "common/input_error.hpp"
 #include "lab_data/statistics.hpp"
@@ -140,9 +143,10 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
 
 // --- running cases -------------------------------------------------------------------------
 
-StudyRunner::StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log)
+StudyRunner::StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log, const StudyExecution* execution)
     : config_(config), log_(std::move(log)),
-      ledger_(std::make_unique<Ledger>(config.ledger, common::fnv1a_hex(config.describe()), config.describe())) {
+      ledger_(std::make_unique<Ledger>(config.ledger, common::fnv1a_hex(config.describe()), config.describe())),
+      execution_(execution) {
     if (const auto rows = ledger_->size()) say("ledger " + config.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
 }
 
@@ -152,29 +156,59 @@ void StudyRunner::say(const std::string& line) const {
     if (log_) log_(line);
 }
 
-std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::vector<std::vector<double>>& points,
-                                        const std::vector<std::string>& labels, const std::vector<double>& xs) {
-    problem.seeds = config_.seeds;
-    problem.workers = config_.workers;
-    problem.timeout_s = config_.timeout_s;
-    problem.solver.max_runs = 1 << 30;  // a study runs what it asks for
-    auto model = make_model(problem);
-    model->prepare(problem.seeds, problem.workers, [this](const std::string& s) { say(s); });
+namespace {
+
+/// One case's evaluations and how its runs went.
+struct CaseRuns {
+    std::vector<Evaluation> evals;
+    int executed = 0, from_ledger = 0, failed = 0;
+};
+
+/// The runs of one case through an Evaluator: on threads with a model of its own, or on the
+/// shared executor with the case's model among the StudyModels (the same model, the same
+/// ledger keys, the same outcomes).
+CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std::vector<double>>& points, const std::string& label,
+                       Ledger& ledger, const StudyExecution* execution, const std::function<void(const std::string&)>& say) {
     const ParameterSpace space(problem.parameters, problem.base.material);
-    Evaluator evaluator(problem, space, *model, *ledger_, model->fingerprint());
     std::vector<std::size_t> sands;
     for (std::size_t s = 0; s < problem.sands.size(); ++s) sands.push_back(s);
-    const std::vector<Evaluation> evals = evaluator.evaluate(points, sands, labels.empty() ? "study" : labels.front());
-    executed_ += evaluator.runs_executed();
-    from_ledger_ += evaluator.runs_from_ledger();
-    failed_ += evaluator.runs_failed();
+    auto evaluate = [&](Evaluator& evaluator) {
+        CaseRuns r;
+        r.evals = evaluator.evaluate(points, sands, label);
+        r.executed = evaluator.runs_executed(), r.from_ledger = evaluator.runs_from_ledger(), r.failed = evaluator.runs_failed();
+        return r;
+    };
+    if (execution) {
+        const std::optional<std::size_t> k = execution->models.find(problem);
+        if (!k) throw std::logic_error("study: a case that study_problems() did not list");
+        CaseExecutor executor(execution->executor, execution->models.offset(*k));
+        Evaluator evaluator(problem, space, executor, ledger, execution->models.model(*k).fingerprint());
+        return evaluate(evaluator);
+    }
+    auto model = make_model(problem);
+    model->prepare(problem.seeds, problem.workers, say);
+    Evaluator evaluator(problem, space, *model, ledger, model->fingerprint());
+    return evaluate(evaluator);
+}
+
+}  // namespace
+
+std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::vector<std::vector<double>>& points,
+                                        const std::vector<std::string>& labels, const std::vector<double>& xs) {
+    problem = as_study_problem(std::move(problem), config_);
+    const CaseRuns runs = evaluate_case(problem, points, labels.empty() ? "study" : labels.front(), *ledger_, execution_,
+                                        [this](const std::string& s) { say(s); });
+    const std::vector<Evaluation>& evals = runs.evals;
+    executed_ += runs.executed;
+    from_ledger_ += runs.from_ledger;
+    failed_ += runs.failed;
     std::vector<StudyCase> cases;
     for (std::size_t k = 0; k < evals.size(); ++k) {
         StudyCase c;
         c.label = k < labels.size() ? labels[k] : "case " + std::to_string(k + 1);
         c.x = k < xs.size() ? xs[k] : 0.0;
         c.sands = problem.sands;
-        c.runs.assign(sands.size(), {});
+        c.runs.assign(problem.sands.size(), {});
         const std::size_t per_sand = problem.seeds.size();
         for (std::size_t r = 0; r < evals[k].runs.size(); ++r) c.runs[r / per_sand].push_back(evals[k].runs[r]);
         say(c.label + ": " + std::to_string(evals[k].runs.size()) + " runs, " + std::to_string(c.failed()) + " failed");
@@ -185,7 +219,7 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
 
 // --- the whole study -----------------------------------------------------------------------
 
-StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log) {
+StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log, const StudyExecution* execution) {
     const auto start = std::chrono::steady_clock::now();
     StudyResult result;
     result.config = config;
@@ -195,7 +229,7 @@ StudyResult run_study(const StudyConfig& config, const std::function<void(const 
         const CalibratedPoint point = load_calibrated_point(config.calibration);
         result.calibration_summaries.push_back(config.calibration.string());
         result.representative = point.problem.representative;
-        StudyRunner runner(config, log);
+        StudyRunner runner(config, log, execution);
         switch (config.kind) {
             case StudyKind::gradation_effect: run_gradation_effect(point, runner, result); break;
             case StudyKind::resolution: run_size_sweep(point, runner, result, SweepKind::edge); break;

@@ -78,6 +78,11 @@ struct StudyResult {
     double wall_seconds = 0.0;
 };
 
-StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log = {});
+struct StudyExecution;
+
+/// Runs the study; its runs go to threads of this process, or to `execution`'s executor (the
+/// worker ranks of an MPI job: calibrate/study_models.hpp), with the same results.
+StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log = {},
+                      const StudyExecution* execution = nullptr);
 
 }  // namespace gradem::cal

@@ -130,10 +130,9 @@ void run_gradation_effect(const CalibratedPoint& point, StudyRunner& runner, Stu
 
 // resolution / fines_truncation: the same parameters on specimens of another edge or another
 // smallest kept grain; cases in increasing order of the swept size.
-void run_size_sweep(const CalibratedPoint& point, StudyRunner& runner, StudyResult& result, SweepKind kind) {
-    const StudyConfig& cfg = result.config;
+// Every swept specimen is checked before anything runs.
+std::vector<CalibrationProblem> sweep_problems(const CalibratedPoint& point, const StudyConfig& cfg, SweepKind kind) {
     const char* key = kind == SweepKind::edge ? "study.edges_mm" : "study.min_diameters_mm";
-    // Every swept specimen is checked before anything runs.
     std::vector<CalibrationProblem> problems;
     for (double x : cfg.sweep_mm) {
         CalibrationProblem p = point.problem;
@@ -151,6 +150,12 @@ void run_size_sweep(const CalibratedPoint& point, StudyRunner& runner, StudyResu
                                                        fmt_num(spec.size_rule.max_diameter * 1e3) + " mm)");
         problems.push_back(std::move(p));
     }
+    return problems;
+}
+
+void run_size_sweep(const CalibratedPoint& point, StudyRunner& runner, StudyResult& result, SweepKind kind) {
+    const StudyConfig& cfg = result.config;
+    const std::vector<CalibrationProblem> problems = sweep_problems(point, cfg, kind);
     for (std::size_t k = 0; k < problems.size(); ++k) {
         const double x = cfg.sweep_mm[k];
         const std::string name = (kind == SweepKind::edge ? "edge " : "d_min ") + fmt_num(x) + " mm";

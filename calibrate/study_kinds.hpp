@@ -11,10 +11,12 @@
 namespace gradem::cal {
 
 class Ledger;
+struct StudyExecution;
 
 class StudyRunner {
 public:
-    StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log);
+    /// `execution`: run on that executor (an MPI job's) instead of threads of this process.
+    StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log, const StudyExecution* execution = nullptr);
     ~StudyRunner();
     /// Runs every point on every sand of `problem` and the study's seeds (one case per point).
     std::vector<StudyCase> run(CalibrationProblem problem, const std::vector<std::vector<double>>& points,
@@ -28,12 +30,16 @@ private:
     const StudyConfig& config_;
     std::function<void(const std::string&)> log_;
     std::unique_ptr<Ledger> ledger_;
+    const StudyExecution* execution_;
     int executed_ = 0, from_ledger_ = 0, failed_ = 0;
 };
 
 enum class SweepKind { edge, min_diameter };
 
 void run_gradation_effect(const CalibratedPoint& point, StudyRunner& runner, StudyResult& result);
+/// The specimens of a resolution (edge) or fines_truncation (min_diameter) sweep, in the
+/// config's order; InputError naming the study file for a value that gives a bad specimen.
+std::vector<CalibrationProblem> sweep_problems(const CalibratedPoint& point, const StudyConfig& config, SweepKind kind);
 void run_size_sweep(const CalibratedPoint& point, StudyRunner& runner, StudyResult& result, SweepKind kind);
 void run_sensitivity(const CalibratedPoint& point, StudyRunner& runner, StudyResult& result);
 void run_model_form(const StudyConfig& config, StudyResult& result);

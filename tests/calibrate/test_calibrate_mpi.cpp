@@ -255,6 +255,53 @@ TEST_CASE("mpirun -np 3 gradem calibrate: the thread executor's answer bitwise, 
 
 namespace {
 
+/// `j` without the wall times (every key that starts with "wall_seconds"), which differ between
+/// two runs of the same study.
+nlohmann::json without_wall_times(nlohmann::json j) {
+    if (j.is_object()) {
+        for (auto it = j.begin(); it != j.end();)
+            if (it.key().rfind("wall_seconds", 0) == 0) it = j.erase(it);
+            else *it = without_wall_times(*it), ++it;
+    } else if (j.is_array()) {
+        for (auto& v : j) v = without_wall_times(v);
+    }
+    return j;
+}
+
+}  // namespace
+
+TEST_CASE("mpirun -np 3 gradem study: the thread run's study bitwise, its cube tests on the worker ranks", "[calibrate][mpi]") {
+    TempDir dir("study-mpi");
+    const fs::path cfg = analytic_problem(dir.path, 40);
+    const Finished calibration = run({GRADEM_BIN, "calibrate", cfg.string(), "--out", "cal"}, dir.path);
+    INFO(calibration.output);
+    REQUIRE(calibration.exit_code == 0);
+    // Two cube edges: two case models, both on every worker rank.
+    test::write_text(dir.path / "resolution.toml", "[study]\nkind = \"resolution\"\ncalibration = \"cal/summary.json\"\n"
+                                                   "edges_mm = [2.5, 3.0]\nseeds = [1, 2, 3]\n[output]\ndir = \"study\"\n");
+    const Finished threads = run({GRADEM_BIN, "study", "resolution.toml", "--out", "threads"}, dir.path);
+    INFO(threads.output);
+    REQUIRE(threads.exit_code == 0);
+    const Finished ranks = run(mpirun(3, {GRADEM_BIN, "study", "resolution.toml", "--out", "mpi"}), dir.path);
+    INFO(ranks.output);
+    REQUIRE(ranks.exit_code == 0);
+    CHECK_THAT(ranks.output, Contains("MPI: 2 worker ranks on 1 host"));
+    const auto a = read_json(dir.path / "threads" / "study.json"), b = read_json(dir.path / "mpi" / "study.json");
+    CHECK(a["runs"] == b["runs"]);
+    CHECK(a["verdict"] == b["verdict"]);
+    CHECK(without_wall_times(a["data"]) == without_wall_times(b["data"]));    // bitwise: JSON doubles round-trip
+    CHECK(without_wall_times(a["cases"]) == without_wall_times(b["cases"]));  // every run's outputs
+    const auto ta = ledger_rows(dir.path / "threads" / "ledger.sqlite"), tb = ledger_rows(dir.path / "mpi" / "ledger.sqlite");
+    REQUIRE(ta.size() == 6);  // 2 sands x 3 seeds; the stand-in ignores the edge, so case 2 is served from the ledger
+    check_same_runs(ta, tb);
+    std::map<std::int64_t, int> per_rank;
+    for (const auto& [key, r] : tb) ++per_rank[r.rank];
+    CHECK(per_rank[0] == 0);
+    CHECK(per_rank[1] + per_rank[2] == 6);
+}
+
+namespace {
+
 /// The uninterrupted answer of a problem with the thread executor, in its own ledger.
 cal::CalibrationResult reference_of(const fs::path& cfg, const fs::path& ledger) {
     cal::CalibrationProblem p = cal::load_calibration_problem(cfg);

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <fstream>
 
+#include "calibrate/run_executor.hpp"
 #include "calibrate/study.hpp"
+#include "calibrate/study_models.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
@@ -118,6 +120,56 @@ TEST_CASE("study: sensitivity recovers the stand-in's exact elasticities", "[cal
             CHECK(row["peak_stress"]["elasticity"].get<double>() == Approx(q[s]).epsilon(1e-9));
         }
     }
+}
+
+TEST_CASE("study on a shared executor: each case's sands routed to its model, the answer of the thread run bitwise",
+          "[calibrate][study]") {
+    TempDir dir("study-shared-executor");
+    const fs::path summary = calibrated_summary(dir.path);
+    const fs::path toml = write_study(dir.path, "kind = \"resolution\"\ncalibration = \"" + summary.string() +
+                                                    "\"\nedges_mm = [2.5, 3.0]\nseeds = [1, 2, 3]");
+    cal::StudyConfig config = cal::load_study_config(toml);
+    const std::vector<cal::CalibrationProblem> problems = cal::study_problems(config);
+    REQUIRE(problems.size() == 2);
+    CHECK(problems[1].base.specimen.genesis.edge == 3.0e-3);
+    CHECK(problems[1].seeds == config.seeds);
+    cal::StudyModels models(problems);
+    CHECK(models.offset(0) == 0);
+    CHECK(models.offset(1) == 2);
+    CHECK(models.find(problems[1]) == std::optional<std::size_t>(1));
+    cal::CalibrationProblem other = problems[0];
+    other.base.specimen.genesis.edge = 4.0e-3;
+    CHECK_FALSE(models.find(other).has_value());
+
+    // Routing: the stand-in's coefficients depend on the sand number, so composite sand 2 must
+    // run as case 1's sand 0 (not as a third sand of case 0).
+    const exp::MaterialParams m = problems[0].base.material;
+    const cal::RunOutcome routed = models.run({2, 7, m}, 0.0);
+    CHECK(routed.peak_pa == models.model(1).run({0, 7, m}, 0.0).peak_pa);
+    CHECK(routed.peak_pa != models.model(0).run({2, 7, m}, 0.0).peak_pa);
+    CHECK_THROWS(models.run({4, 7, m}, 0.0));
+
+    // The study through an executor of the StudyModels, as an MPI job runs it, against the
+    // plain thread run: the same cases, runs and numbers, bitwise.
+    const cal::StudyResult plain = cal::run_study(config);
+    config.out_dir = dir.path / "shared";
+    config.ledger = config.out_dir / "ledger.sqlite";
+    models.prepare(config.seeds, 2, {});
+    cal::ThreadExecutor threads(models, 2);
+    const cal::StudyExecution execution{models, threads};
+    const cal::StudyResult shared = cal::run_study(config, {}, &execution);
+    CHECK(shared.runs_executed == plain.runs_executed);
+    CHECK(shared.runs_from_ledger == plain.runs_from_ledger);
+    CHECK(shared.data == plain.data);
+    REQUIRE(shared.cases.size() == plain.cases.size());
+    for (std::size_t k = 0; k < plain.cases.size(); ++k)
+        for (std::size_t s = 0; s < plain.cases[k].runs.size(); ++s)
+            for (std::size_t r = 0; r < plain.cases[k].runs[s].size(); ++r) {
+                const cal::RunOutcome &a = plain.cases[k].runs[s][r], &b = shared.cases[k].runs[s][r];
+                CHECK(a.modulus_pa == b.modulus_pa);
+                CHECK(a.peak_pa == b.peak_pa);
+                CHECK(a.strain_at_peak == b.strain_at_peak);
+            }
 }
 
 TEST_CASE("study: model_form tabulates calibrations with their shape index", "[calibrate][study]") {

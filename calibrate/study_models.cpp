@@ -1,0 +1,90 @@
+#include "calibrate/study_models.hpp"
+
+#include <stdexcept>
+
+#include "calibrate/calibration.hpp"
+#include "calibrate/study.hpp"
+#include "calibrate/study_kinds.hpp"
+
+namespace gradem::cal {
+namespace {
+
+/// The same specimen and test: what the study kinds vary (the cube edge, the kept grain sizes)
+/// and everything the problem's answer depends on (its canonical text).
+bool same_case(const CalibrationProblem& a, const CalibrationProblem& b) {
+    const exp::SpecimenSpec &x = a.base.specimen, &y = b.base.specimen;
+    return a.model == b.model && x.genesis.edge == y.genesis.edge && x.size_rule.min_diameter == y.size_rule.min_diameter &&
+           x.size_rule.max_diameter == y.size_rule.max_diameter && x.size_rule.scale == y.size_rule.scale &&
+           a.describe() == b.describe();
+}
+
+}  // namespace
+
+CalibrationProblem as_study_problem(CalibrationProblem problem, const StudyConfig& config) {
+    problem.seeds = config.seeds;
+    problem.workers = config.workers;
+    problem.timeout_s = config.timeout_s;
+    problem.solver.max_runs = 1 << 30;  // a study runs what it asks for
+    return problem;
+}
+
+std::vector<CalibrationProblem> study_problems(const StudyConfig& config) {
+    if (config.kind == StudyKind::model_form) return {};
+    const CalibratedPoint point = load_calibrated_point(config.calibration);
+    std::vector<CalibrationProblem> problems;
+    switch (config.kind) {
+        case StudyKind::resolution: problems = sweep_problems(point, config, SweepKind::edge); break;
+        case StudyKind::fines_truncation: problems = sweep_problems(point, config, SweepKind::min_diameter); break;
+        default: problems = {point.problem}; break;
+    }
+    for (CalibrationProblem& p : problems) p = as_study_problem(std::move(p), config);
+    return problems;
+}
+
+StudyModels::StudyModels(std::vector<CalibrationProblem> problems) : problems_(std::move(problems)) {
+    std::size_t sands = 0;
+    for (const CalibrationProblem& p : problems_) {
+        models_.push_back(make_model(p));
+        offsets_.push_back(sands);
+        sands += p.sands.size();
+    }
+}
+
+std::optional<std::size_t> StudyModels::find(const CalibrationProblem& problem) const {
+    for (std::size_t k = 0; k < problems_.size(); ++k)
+        if (same_case(problems_[k], problem)) return k;
+    return std::nullopt;
+}
+
+void StudyModels::prepare(const std::vector<std::uint64_t>& seeds, int workers, const std::function<void(const std::string&)>& log) {
+    for (auto& m : models_) m->prepare(seeds, workers, log);
+}
+
+void StudyModels::load_prepared(const std::vector<std::uint64_t>& seeds) {
+    for (auto& m : models_) m->load_prepared(seeds);
+}
+
+RunOutcome StudyModels::run(const RunRequest& request, double timeout_s) const {
+    for (std::size_t k = problems_.size(); k-- > 0;)
+        if (request.sand >= offsets_[k]) {
+            if (request.sand - offsets_[k] >= problems_[k].sands.size()) break;
+            RunRequest local = request;
+            local.sand -= offsets_[k];
+            return models_[k]->run(local, timeout_s);
+        }
+    throw std::out_of_range("study: sand " + std::to_string(request.sand) + " is no case's sand");
+}
+
+std::string StudyModels::fingerprint() const {
+    std::string f = "study cases " + std::to_string(models_.size());
+    for (const auto& m : models_) f += "\n--\n" + m->fingerprint();
+    return f;
+}
+
+void CaseExecutor::run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) {
+    std::vector<RunRequest> shifted = requests;
+    for (RunRequest& r : shifted) r.sand += offset_;
+    all_.run(shifted, timeout_s, done);
+}
+
+}  // namespace gradem::cal
