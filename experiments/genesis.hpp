@@ -31,6 +31,7 @@
 
 #include "core/vec3.hpp"
 #include "experiments/grain_sampler.hpp"
+#include "experiments/paste_spec.hpp"
 
 namespace gradem::exp {
 
@@ -55,6 +56,9 @@ struct SpecimenSpec {
     SizeRule size_rule;
     GenesisSpec genesis;
     std::uint64_t seed = 1;
+    /// representation = "explicit_paste": the sand packing's pores filled with paste particles
+    /// (paste_fill.hpp; load_or_generate does it and caches the result); none: parallel bonds.
+    std::optional<PasteSettings> paste;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

@@ -16,11 +16,14 @@
 //      finds no room keeps its last try and is counted);
 //   4. growth with soft-overlap relaxation: the paste radii grow to full size in `growth_stages`
 //      steps; after each, overlaps are removed by Jacobi projection (each overlapping pair is
-//      pushed apart along its normal, split in inverse proportion to the particles' volumes; the
-//      box walls fixed) with the pairs from the World's neighbour search (make_neighbor_search():
+//      pushed apart along its normal, split in inverse proportion to the particles' volumes,
+//      so sand grains move little; the box walls fixed) with the pairs from the World's neighbour search (make_neighbor_search():
 //      the multi-level grid at wide size ratios) until the largest overlap is below
 //      `overlap_tolerance` × the smaller radius. A stage that does not get there within
 //      `relax_iterations` stops the growth at the last stage that did (the report says so);
+//   4b. the overlaps left are removed by shrinking particles (paste-sand: the paste one by the
+//      whole overlap; paste-paste and sand-sand: both by half), so the bonded specimen starts
+//      free of stress;
 //   5. the grains sorted along the Morton curve (memory locality), families carried along.
 // The "short equilibration" is the cube test's settling of the bonded specimen (cube_specimen).
 // Simplifications (stated): one contact law for every family; the dilated sand has no contacts
@@ -33,25 +36,9 @@
 
 #include "experiments/genesis.hpp"
 #include "experiments/paste_mix.hpp"
+#include "experiments/paste_spec.hpp"
 
 namespace gradem::exp {
-
-inline constexpr std::uint8_t kSandFamily = 0;
-inline constexpr std::uint8_t kPasteFamily = 1;
-
-struct PasteSpec {
-    double min_diameter = 0.1e-3;      ///< smallest paste particle [m]
-    double max_diameter = 0.1e-3;      ///< largest [m]; = min_diameter: one coarse-grained size
-    double solid_fraction = 0.3;       ///< paste particle volume / paste volume, in (0, 0.74] [-]; with
-                                       ///< sand at 0.5 the total solid fraction is 0.65, below jamming
-    double overlap_tolerance = 0.02;   ///< largest overlap left / smaller radius, in (0, 0.2] [-]
-    double rsa_scale = 0.6;            ///< radius scale during RSA, in (0, 1] [-]
-    int rsa_attempts = 200;            ///< RSA tries per particle, >= 1
-    int growth_stages = 8;             ///< radius growth stages to full size, >= 1
-    int relax_iterations = 3000;       ///< relaxation sweeps per stage, >= 1
-    double memory_fraction = 0.5;      ///< refuse specimens estimated above this × physical memory, in (0, 1] [-]
-    [[nodiscard]] std::optional<std::string> invalid_reason() const;
-};
 
 /// What the fill did (printed by `gradem specimen`, written into macro.json).
 struct PasteReport {
@@ -68,7 +55,8 @@ struct PasteReport {
     double void_fraction = 0;          ///< 1 - sand - paste represented [-]
     double growth_reached = 0;         ///< radius scale the growth reached (1: full size) [-]
     double max_overlap_sand = 0;       ///< largest paste-sand overlap / smaller radius [-]
-    double max_overlap = 0;            ///< largest overlap of any pair / smaller radius [-]
+    double max_overlap = 0;            ///< largest overlap of any pair / smaller radius [-] (after the shrink: 0)
+    double max_shrink = 0;             ///< largest relative radius cut that removed the overlaps left [-]
     std::size_t rsa_failures = 0;      ///< particles RSA found no free place for
     std::int64_t relax_sweeps = 0;     ///< relaxation sweeps in total
     double estimated_bytes = 0;        ///< memory estimate of the bonded specimen [B]
