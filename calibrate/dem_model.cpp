@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "experiments/paste_cache.hpp"
 #include "calibrate/cube_model.hpp"
 #include "calibrate/thread_pool.hpp"
 #include "common/input_error.hpp"
@@ -139,6 +140,11 @@ public:
             exp::SpecimenSpec spec = base_.specimen;
             spec.seed = 0;  // seeds are part of each run key
             f << "; packing " << std::hex << exp::packing_key(curve, spec) << std::dec;
+            if (spec.paste)  // explicit paste (issue 11): the paste specimen and the bond families
+                f << "; paste " << std::hex << exp::paste_packing_key(exp::packing_key(curve, spec), *spec.paste) << std::dec
+                  << " itz " << std::hexfloat << base_.material.families.itz_strength_factor << " "
+                  << base_.material.families.itz_modulus_factor << std::defaultfloat << " sand-sand "
+                  << (base_.material.families.sand_sand_bonded ? "bonded" : "frictional");
         }
         const exp::PlatenTestSpec& l = base_.test.loading;
         f << "; rate " << (base_.auto_strain_rate ? std::string("auto") : std::to_string(l.strain_rate)) << std::hexfloat

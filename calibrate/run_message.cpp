@@ -17,7 +17,7 @@ static_assert(sizeof(FlatJointParams) == 2 * 4 + 8, "FlatJointParams changed: se
 static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* model, padded */ + sizeof(SoftBondParams) +
                                        sizeof(FlatJointParams),
               "BondParams changed: serialise the new field in run_message.cpp");
-static_assert(sizeof(exp::MaterialParams) == 24 + sizeof(BondParams) + 4 * 8,
+static_assert(sizeof(exp::MaterialParams) == 24 + sizeof(BondParams) + 4 * 8 + 3 * 8 /* families */,
               "MaterialParams changed: serialise the new field in run_message.cpp");
 
 class Writer {
@@ -115,6 +115,9 @@ void put_material(Writer& w, const exp::MaterialParams& m) {
     w.i64(b.flat.angular_elements);
     w.f64(b.flat.residual_friction);
     for (double x : {m.bond_gap_fraction, m.bond_gap_absolute, m.platen_friction, m.damping}) w.f64(x);
+    w.f64(m.families.itz_strength_factor);
+    w.f64(m.families.itz_modulus_factor);
+    w.u8(m.families.sand_sand_bonded ? 1 : 0);
 }
 
 exp::MaterialParams get_material(Reader& r) {
@@ -135,6 +138,9 @@ exp::MaterialParams get_material(Reader& r) {
     b.flat.angular_elements = static_cast<std::int32_t>(r.i64());
     b.flat.residual_friction = r.f64();
     for (double* x : {&m.bond_gap_fraction, &m.bond_gap_absolute, &m.platen_friction, &m.damping}) *x = r.f64();
+    m.families.itz_strength_factor = r.f64();
+    m.families.itz_modulus_factor = r.f64();
+    m.families.sand_sand_bonded = r.u8() != 0;
     return m;
 }
 

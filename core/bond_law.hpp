@@ -41,6 +41,7 @@ struct ParallelBond {
     std::int32_t slot = -1;        ///< index of the pair in the World's interaction list
     BondState state = BondState::intact;
     BondModel model = BondModel::parallel_bond;  ///< the law this bond follows
+    std::uint8_t family_pair = 0;  ///< its parameters: World::bond_family_params()[family_pair] (issue 11)
     double tensile_strength = 0.0; ///< σ̄_c [Pa]
     double cohesion = 0.0;         ///< c̄ [Pa]
     double normal_force = 0.0;     ///< F̄_n, tension positive [N]

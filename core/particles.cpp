@@ -5,7 +5,7 @@
 
 namespace gradem {
 
-std::int32_t ParticleSet::add(const Vec3& x, double r, double density) {
+std::int32_t ParticleSet::add(const Vec3& x, double r, double density, std::uint8_t family_tag) {
     const double m = density * (4.0 / 3.0) * kPi * r * r * r;
     position.push_back(x);
     velocity.push_back({});
@@ -16,6 +16,7 @@ std::int32_t ParticleSet::add(const Vec3& x, double r, double density) {
     mass.push_back(m);
     inertia.push_back(0.4 * m * r * r);
     flags.push_back(0);
+    family.push_back(family_tag);
     return static_cast<std::int32_t>(radius.size() - 1);
 }
 
@@ -46,6 +47,7 @@ void ParticleSet::permute(const std::vector<std::int32_t>& order) {
     apply_order(mass, order);
     apply_order(inertia, order);
     apply_order(flags, order);
+    apply_order(family, order);
 }
 
 void ParticleSet::scale_density(double factor) {

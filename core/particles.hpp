@@ -26,11 +26,12 @@ struct ParticleSet {
     std::vector<double> mass;    ///< [kg]
     std::vector<double> inertia; ///< moment of inertia, 2/5 m R^2 for a solid sphere [kg m^2]
     std::vector<std::uint8_t> flags;  ///< ParticleFlag bits
+    std::vector<std::uint8_t> family; ///< bond family (issue 11: 0 sand, 1 paste); 0 by default
 
     [[nodiscard]] std::size_t size() const { return radius.size(); }
 
-    /// Adds a solid sphere of the given density [kg/m^3]; returns its index.
-    std::int32_t add(const Vec3& x, double r, double density);
+    /// Adds a solid sphere of the given density [kg/m^3] and bond family; returns its index.
+    std::int32_t add(const Vec3& x, double r, double density, std::uint8_t family_tag = 0);
 
     /// Changes the radius of particle i, keeping its density (mass and inertia follow).
     void set_radius(std::size_t i, double r);

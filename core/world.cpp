@@ -56,6 +56,10 @@ void World::set_bond_stiffness(double effective_modulus, double stiffness_ratio)
     p.stiffness_ratio = stiffness_ratio;
     require_valid(p.invalid_reason());
     bond_params_ = p;
+    for (BondParams& f : bond_family_params_) {
+        f.effective_modulus = effective_modulus;
+        f.stiffness_ratio = stiffness_ratio;
+    }
     forces_current_ = false;
     if (sim_.time_step == 0.0) dt_ = 0.0;
 }
@@ -133,9 +137,10 @@ double World::critical_time_step() {
                 k_tran += std::max(kn, ks);
                 k_rot += ks * ri * ri;
                 if (pr.bond >= 0 && bonds_[static_cast<std::size_t>(pr.bond)].state == BondState::intact) {
-                    const BondSection s = bond_section(bond_params_.radius_multiplier, ra, rb);
-                    const BondStiffness k = bond_stiffness(bond_params_.effective_modulus,
-                                                           bond_params_.stiffness_ratio, ra, rb);
+                    const ParallelBond& bond = bonds_[static_cast<std::size_t>(pr.bond)];
+                    const BondParams& bp = bond_family_params_[bond.family_pair];
+                    const BondSection s = bond_section(bp.radius_multiplier, ra, rb);
+                    const BondStiffness k = bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb);
                     const TimeStepStiffness t = bond_time_step_stiffness(s, k, ri);
                     k_tran += t.translational;
                     k_rot += t.rotational;

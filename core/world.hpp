@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bond_families.hpp"
 #include "core/bond_law.hpp"
 #include "core/neighbor_search.hpp"
 #include "core/params.hpp"
@@ -40,6 +41,10 @@ public:
     /// gap`), at zero force in the current geometry, replacing any existing bonds. Returns the
     /// bond count.
     std::size_t install_bonds(const BondParams& params, double max_gap);
+    /// The same with parameters per pair of particle families (ParticleSet::family; issue 11):
+    /// a pair whose table entry is empty gets no bond. Throws for an invalid table or a particle
+    /// family outside it.
+    std::size_t install_bonds(const BondFamilyTable& table, double max_gap);
     /// Changes bond stiffness parameters of the existing bonds (strengths stay as drawn).
     void set_bond_stiffness(double effective_modulus, double stiffness_ratio);
     void set_contact_params(const ContactParams& contact);
@@ -81,6 +86,9 @@ public:
     [[nodiscard]] double critical_time_step();
     [[nodiscard]] const ContactParams& contact_params() const { return contact_; }
     [[nodiscard]] const BondParams& bond_params() const { return bond_params_; }
+    /// Parameters of each bond family pair (index ParallelBond::family_pair; one entry for the
+    /// single-parameter installation).
+    [[nodiscard]] const std::vector<BondParams>& bond_family_params() const { return bond_family_params_; }
     [[nodiscard]] const SimParams& sim_params() const { return sim_; }
     [[nodiscard]] std::size_t intact_bond_count() const;
     [[nodiscard]] std::size_t pair_count() const { return pairs_.size(); }
@@ -118,6 +126,7 @@ private:
     ParticleSet particles_;
     ContactParams contact_;
     BondParams bond_params_;
+    std::vector<BondParams> bond_family_params_{BondParams{}};  ///< per ParallelBond::family_pair
     SimParams sim_;
     std::unique_ptr<NeighborSearch> search_;
 

@@ -15,17 +15,49 @@ namespace gradem {
 
 std::size_t World::install_bonds(const BondParams& params, double max_gap) {
     require_valid(params.invalid_reason());
+    return install_bonds(BondFamilyTable::single(params), max_gap);
+}
+
+// Family pair (a, b) -> index min * n + max into the table (the bond's family_pair). A table of
+// one family bonds every pair, whatever the particles' tags.
+std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
+    require_valid(table.invalid_reason());
     if (!std::isfinite(max_gap))
         throw std::invalid_argument("install_bonds: max_gap is not finite");
+    const int nf = table.families;
+    if (nf > 1) {
+        if (particles_.family.size() != particles_.size())
+            throw std::invalid_argument("install_bonds: particle families not set");
+        for (std::size_t i = 0; i < particles_.size(); ++i)
+            if (particles_.family[i] >= nf)
+                throw std::invalid_argument("install_bonds: particle " + std::to_string(i) + " has family " +
+                                            std::to_string(particles_.family[i]) + ", the table has " +
+                                            std::to_string(nf));
+    }
+    const BondParams* first = nullptr;
+    for (const auto& e : table.entries)
+        if (e && !first) first = &*e;
     const std::size_t stride =
-        visit_bond_law(params.model, [&](auto law) { return decltype(law)::side_size(params); });
-    bond_params_ = params;
+        visit_bond_law(first->model, [&](auto law) { return decltype(law)::side_size(*first); });
+    std::vector<BondParams> family_params(table.entries.size(), *first);  // absent entries: never used
+    for (std::size_t k = 0; k < table.entries.size(); ++k) {
+        if (!table.entries[k]) continue;
+        family_params[k] = *table.entries[k];
+        const std::size_t own = visit_bond_law(first->model, [&](auto law) { return decltype(law)::side_size(family_params[k]); });
+        if (own != stride) throw std::invalid_argument("install_bonds: bond families differ in the law's shape (side state)");
+    }
+    bond_params_ = *first;
+    bond_family_params_ = family_params;
     std::vector<ParticlePair> found;
     search_->find_pairs(particles_.position, particles_.radius, std::max(max_gap, 0.0), found);
     bonds_.clear();
     std::vector<Vec3> normals;
     for (const ParticlePair& p : found) {
         const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
+        const int fa = nf == 1 ? 0 : particles_.family[i], fb = nf == 1 ? 0 : particles_.family[j];
+        const auto family_pair = static_cast<std::size_t>(std::min(fa, fb) * nf + std::max(fa, fb));
+        if (!table.entries[family_pair]) continue;  // this family pair is not bonded
+        const BondParams& params = family_params[family_pair];
         const Vec3 d = particles_.position[j] - particles_.position[i];
         const double dist = norm(d);
         const double gap = dist - particles_.radius[i] - particles_.radius[j];
@@ -34,6 +66,7 @@ std::size_t World::install_bonds(const BondParams& params, double max_gap) {
         b.i = p.i;
         b.j = p.j;
         b.model = params.model;
+        b.family_pair = static_cast<std::uint8_t>(family_pair);
         const std::uint64_t key = (static_cast<std::uint64_t>(p.i) << 32) | static_cast<std::uint32_t>(p.j);
         b.tensile_strength = truncated_normal_positive(
             params.tensile_strength_mean, params.tensile_strength_std, params.seed, key);
@@ -46,9 +79,10 @@ std::size_t World::install_bonds(const BondParams& params, double max_gap) {
     bond_side_.assign(bonds_.size() * stride, 0.0);
     bond_side_.shrink_to_fit();
     if (stride > 0)
-        visit_bond_law(params.model, [&](auto law) {
+        visit_bond_law(first->model, [&](auto law) {
             for (std::size_t k = 0; k < bonds_.size(); ++k)
-                decltype(law)::install(params, normals[k], bond_side_.data() + k * stride);
+                decltype(law)::install(bond_family_params_[bonds_[k].family_pair], normals[k],
+                                       bond_side_.data() + k * stride);
         });
     rebuild_needed_ = true;
     forces_current_ = false;
@@ -66,7 +100,8 @@ World::BondEnergy World::compute_bonds_with(double dt) {
     const auto nb = static_cast<std::int64_t>(bonds_.size());
     std::vector<BondEnergy> partial(static_cast<std::size_t>(block_count(nb)));
     std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
-    const typename Law::Context ctx = Law::context(bond_params_, sim_.track_energy);
+    std::vector<typename Law::Context> contexts;  // one per bond family pair
+    for (const BondParams& p : bond_family_params_) contexts.push_back(Law::context(p, sim_.track_energy));
     const std::size_t stride = bond_side_stride_;
     for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BondEnergy e;
@@ -79,9 +114,10 @@ World::BondEnergy World::compute_bonds_with(double dt) {
                               particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             const PairKinematics kin = pair_kinematics(s, dt);
-            const BondSection sec = bond_section(bond_params_.radius_multiplier, s.ra, s.rb);
-            const BondStiffness stiff = bond_stiffness(bond_params_.effective_modulus,
-                                                       bond_params_.stiffness_ratio, s.ra, s.rb);
+            const BondParams& bp = bond_family_params_[b.family_pair];
+            const typename Law::Context& ctx = contexts[b.family_pair];
+            const BondSection sec = bond_section(bp.radius_multiplier, s.ra, s.rb);
+            const BondStiffness stiff = bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, s.ra, s.rb);
             double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
             const BondStepResult r = Law::step(ctx, b, side, sec, stiff, kin, breaks);
             e.stored += r.stored;

@@ -13,6 +13,7 @@
 #include "common/input_error.hpp"
 #include "common/toml_section.hpp"
 #include "experiments/material_table.hpp"
+#include "experiments/paste_config.hpp"
 #include "lab_data/dataset.hpp"
 #include "lab_data/sieve_table.hpp"
 #include "lab_data/text.hpp"
@@ -27,13 +28,14 @@ using namespace common::toml_io;
 constexpr double kMm = 1.0e-3, kMpa = 1.0e6, kGpa = 1.0e9;  // display unit -> SI
 
 const std::vector<std::string> kTables = {"specimen", "size_rule", "genesis", "material", "test", "output",
-                                          "tension"};  // [tension]: tension_config.hpp
+                                          "tension", "mix", "paste"};  // [tension]: tension_config.hpp; [mix], [paste]: paste_config.hpp
 
 void read_specimen(Context& ctx, const toml::table& root, CubeConfig& c) {
     Section s(ctx, root, "specimen");
     s.path("dataset", c.dataset);
     s.text("sand", c.sand);
     s.path("sieve_csv", c.sieve_csv);
+    s.text("representation", c.representation);  // paste_config.hpp
     s.finish();
     const int line = ctx.keys["specimen.dataset"].line + ctx.keys["specimen.sieve_csv"].line;
     if (c.dataset.empty() == c.sieve_csv.empty())
@@ -226,6 +228,7 @@ CubeConfig load_cube_config(const fs::path& toml_file) {
     read_specimen(ctx, root, c);
     read_genesis(ctx, root, c);
     read_material(ctx, root, c);
+    read_paste_config(ctx, root, c);
     read_test(ctx, root, c);
     read_output(ctx, root, c, toml_file.stem().string());
     check(ctx, c.specimen.invalid_reason());

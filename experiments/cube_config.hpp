@@ -30,6 +30,7 @@ struct CubeConfig {
     std::filesystem::path dataset;     ///< lab dataset folder or TOML (with `sand`), or empty
     std::string sand;                  ///< sand name in the dataset
     std::filesystem::path sieve_csv;   ///< or a sieve table (then dataset is empty)
+    std::string representation = "parallel_bonds";  ///< or "explicit_paste" ([mix], [paste]: paste_config.hpp)
     SpecimenSpec specimen;
     MaterialParams material;
     CubeTestSpec test;                 ///< test.loading.platen_friction = material.platen_friction

@@ -16,14 +16,36 @@ double mean_radius(const Packing& k) {
     return sum / static_cast<double>(k.radius.size());
 }
 
+// Explicit paste (issue 11): paste-paste bonds are m.bond, paste-sand (ITZ) bonds m.bond scaled
+// by the ITZ factors, sand-sand pairs bonded with m.bond or frictional only.
+BondFamilyTable family_bonds(const MaterialParams& m) {
+    BondFamilyTable t = BondFamilyTable::empty(2);
+    BondParams itz = m.bond;
+    const double f = m.families.itz_strength_factor;
+    itz.tensile_strength_mean *= f;
+    itz.tensile_strength_std *= f;
+    itz.cohesion_mean *= f;
+    itz.cohesion_std *= f;
+    itz.effective_modulus *= m.families.itz_modulus_factor;
+    t.set(kPasteFamily, kPasteFamily, m.bond);
+    t.set(kSandFamily, kPasteFamily, itz);
+    if (m.families.sand_sand_bonded) t.set(kSandFamily, kSandFamily, m.bond);
+    return t;
+}
+
 // Bonded specimen between two frictional platens, lateral faces free.
 World build_specimen(const Packing& k, const MaterialParams& m) {
+    const bool paste = !k.family.empty();
     ParticleSet particles;
-    for (std::size_t i = 0; i < k.position.size(); ++i) particles.add(k.position[i], k.radius[i], k.density);
+    for (std::size_t i = 0; i < k.position.size(); ++i) {
+        const std::uint8_t family = paste ? k.family[i] : kSandFamily;
+        particles.add(k.position[i], k.radius[i], family == kPasteFamily ? k.paste_density : k.density, family);
+    }
     SimParams sim;
     sim.local_damping = m.damping;
     World world(std::move(particles), m.contact, sim);
-    world.install_bonds(m.bond, m.bond_gap(mean_radius(k)));
+    if (paste) world.install_bonds(family_bonds(m), m.bond_gap(mean_radius(k)));
+    else world.install_bonds(m.bond, m.bond_gap(mean_radius(k)));
     WallContactParams platen;
     platen.effective_modulus = m.contact.effective_modulus;
     platen.stiffness_ratio = m.contact.stiffness_ratio;

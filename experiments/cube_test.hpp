@@ -38,6 +38,14 @@ struct MaterialParams {
     }
     double platen_friction = 0.5;     ///< mu_w [-]
     double damping = 0.7;             ///< local damping alpha [-]
+    /// Explicit-paste specimens only (Packing::family set; [paste] keys): paste-paste bonds use
+    /// `bond`; paste-sand (interfacial zone) bonds use `bond` with strengths and modulus scaled
+    /// by these factors; sand-sand pairs are bonded with `bond` or frictional only.
+    struct FamilyBonds {
+        double itz_strength_factor = 1.0;  ///< ITZ σ̄_c, c̄ (means and std) / paste's [-]
+        double itz_modulus_factor = 1.0;   ///< ITZ Ē* / paste's [-]
+        bool sand_sand_bonded = false;     ///< false: sand-sand contacts frictional only
+    } families;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

@@ -31,6 +31,7 @@
 
 #include "core/vec3.hpp"
 #include "experiments/grain_sampler.hpp"
+#include "experiments/paste_spec.hpp"
 
 namespace gradem::exp {
 
@@ -55,6 +56,9 @@ struct SpecimenSpec {
     SizeRule size_rule;
     GenesisSpec genesis;
     std::uint64_t seed = 1;
+    /// representation = "explicit_paste": the sand packing's pores filled with paste particles
+    /// (paste_fill.hpp; load_or_generate does it and caches the result); none: parallel bonds.
+    std::optional<PasteSettings> paste;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
@@ -78,6 +82,9 @@ struct Packing {
     double radius_growth = 1.0;        ///< multiplier applied to every radius (1: the box moves instead) [-]
     bool converged = false;            ///< stress and equilibrium tolerances met (by the World)
     double seconds = 0.0;              ///< wall-clock time of genesis [s]
+    // --- explicit paste (experiments/paste_fill.hpp); empty / 0 for a sand-only packing ---
+    std::vector<std::uint8_t> family;  ///< per grain: 0 sand, 1 paste; empty: all sand
+    double paste_density = 0.0;        ///< density of paste particles [kg/m^3]
     [[nodiscard]] double edge() const { return box_hi.z - box_lo.z; }
 };
 

@@ -1,4 +1,5 @@
 #include "experiments/packing_cache.hpp"
+#include "experiments/paste_cache.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -221,6 +222,7 @@ Packing load_packing(const fs::path& path, std::uint64_t expected_key) {
 
 Packing load_or_generate(const lab::GradationCurve& curve, const SpecimenSpec& spec, const fs::path& cache_dir,
                          bool* was_cached) {
+    if (spec.paste) return load_or_generate_paste(curve, spec, cache_dir, was_cached);  // explicit paste
     const std::uint64_t key = packing_key(curve, spec);
     const fs::path path = packing_cache_path(cache_dir, key);
     std::error_code ec;

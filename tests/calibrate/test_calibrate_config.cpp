@@ -249,3 +249,24 @@ TEST_CASE("the shipped soft-bond and flat-joint calibration configs load within 
         }
     }
 }
+
+TEST_CASE("the shipped explicit-paste calibration config frees the paste bond stiffness and strengths", "[calibrate][paste]") {
+    TempDir dir("cal-shipped-paste");
+    write_lab(dir.path);
+    const fs::path root = fs::path(GRADEM_SOURCE_DIR);
+    std::string text = bytes(root / "calibrate" / "configs" / "joint_paste.toml");
+    std::string quoted_base = "\"";
+    quoted_base += (root / "experiments" / "configs" / "paste_cube.toml").string();
+    quoted_base += "\"";
+    text = replace_once(text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
+    text = replace_once(text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+    test::write_text(dir.path / "joint_paste.toml", text);
+    const cal::CalibrationProblem p = cal::load_calibration_problem(dir.path / "joint_paste.toml");
+    REQUIRE(p.base.specimen.paste);  // the base cube is an explicit-paste specimen
+    CHECK(p.base.representation == "explicit_paste");
+    const cal::ParameterSpace space(p.parameters, p.base.material);
+    std::vector<std::string> free;
+    for (std::size_t k = 0; k < space.size(); ++k) free.push_back(space.free(k).name);
+    CHECK(free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"});
+    CHECK_FALSE(space.material(space.start()).invalid_reason().has_value());
+}

@@ -1,0 +1,210 @@
+// Explicit-paste specimens end to end (issue 11): the config keys ([specimen] representation,
+// [mix], [paste]) with their errors naming file, line and key; the paste cache keyed on the
+// paste settings; bond families in the bonded cube specimen (sand-sand frictional, ITZ bonds
+// scaled, paste-paste bonds = [material]); the cube test of a paste specimen bitwise the same
+// for 1, 2 and 3 threads.
+#include "../temp_dir.hpp"
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "core/parallel.hpp"
+#include "experiments/cube_config.hpp"
+#include "experiments/cube_specimen.hpp"
+#include "experiments/packing_cache.hpp"
+#include "experiments/paste_cache.hpp"
+#include "common/input_error.hpp"
+#include "study_curves.hpp"
+
+using namespace gradem;
+using namespace gradem::exp;
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+fs::path write(const fs::path& file, const std::string& text) {
+    std::ofstream(file) << text;
+    return file;
+}
+
+void require_rejected(const fs::path& file, int line, std::initializer_list<std::string> parts) {
+    try {
+        (void)load_cube_config(file);
+        FAIL("accepted " << file);
+    } catch (const lab::InputError& e) {
+        INFO(e.what());
+        CHECK(e.line() == line);
+        CHECK_THAT(e.what(), Contains(file.string()));
+        for (const auto& p : parts) CHECK_THAT(e.what(), Contains(p));
+    }
+}
+
+// A small explicit-paste specimen: sand 0.3-0.42 mm in a 1.3 mm cube, paste 0.12 mm.
+SpecimenSpec small_paste_spec() {
+    SpecimenSpec s;
+    s.size_rule.min_diameter = 0.3e-3;
+    s.size_rule.max_diameter = 0.42e-3;
+    s.genesis.edge = 1.3e-3;
+    s.genesis.target_solid_fraction = 0.5;  // the small cube jams at ~0.52 (walls); the mix needs 0.497
+    s.genesis.equilibrium_ratio = 0.05;
+    PasteSettings p;
+    p.mix.sand_specific_gravity = 2.64;
+    p.mix.sand_to_cementitious_volume = 2.0;  // sand fraction 0.43: below the small cube's packed 0.49
+    p.paste.min_diameter = p.paste.max_diameter = 0.12e-3;
+    s.paste = p;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("paste config: the shipped paste cube reads the study's mix and the dataset's SG", "[paste]") {
+    const CubeConfig c = load_cube_config(fs::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "paste_cube.toml");
+    CHECK(c.representation == "explicit_paste");
+    REQUIRE(c.specimen.paste);
+    CHECK(c.specimen.paste->mix.sand_to_cementitious_volume == 2.6);
+    CHECK(c.specimen.paste->mix.water_cement_ratio == 0.53);
+    CHECK(c.specimen.paste->mix.sand_specific_gravity == 2.64);  // from dataset.toml
+    CHECK(c.specimen.paste->paste.min_diameter == Approx(0.1e-3));
+    CHECK_FALSE(c.material.families.sand_sand_bonded);
+    // The parallel-bond configs stay as they were.
+    const CubeConfig pb = load_cube_config(fs::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "calibration_cube.toml");
+    CHECK(pb.representation == "parallel_bonds");
+    CHECK_FALSE(pb.specimen.paste);
+}
+
+TEST_CASE("paste config: bad input names the file, line and key", "[paste]") {
+    const test::TempDir dir("paste-config");
+    const fs::path file = dir.path / "c.toml";
+    std::ofstream(dir.path / "sand.csv") << "sieve_mm,passing_pct\n0.6,100\n0.3,50\n0.15,0\n";
+    const std::string head = "[specimen]\nsieve_csv = \"sand.csv\"\n";
+    SECTION("[paste] with parallel bonds") {
+        write(file, head + "[paste]\nmin_diameter_mm = 0.1\n");
+        require_rejected(file, 3, {"[paste]", "explicit_paste"});
+    }
+    SECTION("unknown representation") {
+        write(file, head + "representation = \"paste\"\n");
+        require_rejected(file, 3, {"specimen.representation", "explicit_paste"});
+    }
+    SECTION("missing specific gravity (a sieve table has none)") {
+        write(file, head + "representation = \"explicit_paste\"\n[mix]\nwater_cement_ratio = 0.5\n");
+        require_rejected(file, 3, {"mix.sand_specific_gravity", "expected"});
+    }
+    SECTION("a value out of range") {
+        write(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\n[paste]\n"
+                           "min_diameter_mm = 0.1\nmax_diameter_mm = 0.05\n");
+        require_rejected(file, 8, {"paste.max_diameter_mm", ">= min_diameter"});
+    }
+    SECTION("a bad mix") {
+        write(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\nair_content = 0.7\n");
+        require_rejected(file, 6, {"mix.air_content", "[0, 0.5)"});
+    }
+    SECTION("sand_sand") {
+        write(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\n[paste]\nsand_sand = \"glued\"\n");
+        require_rejected(file, 7, {"paste.sand_sand", "frictional"});
+    }
+}
+
+TEST_CASE("paste cache: keyed on the paste settings, reloaded bit for bit, bad family file refused", "[paste]") {
+    const test::TempDir dir("paste-cache");
+    const lab::GradationCurve curve = test::pre_blended_curve();
+    SpecimenSpec spec = small_paste_spec();
+    bool cached = true;
+    PasteReport report;
+    const Packing made = load_or_generate(curve, spec, dir.path, &cached);
+    CHECK_FALSE(cached);
+    const Packing again = load_or_generate_paste(curve, spec, dir.path, &cached, &report);
+    CHECK(cached);
+    REQUIRE(again.position.size() == made.position.size());
+    CHECK(again.family == made.family);
+    CHECK(again.paste_density == made.paste_density);
+    CHECK(report.paste_count > 0);
+    for (std::size_t i = 0; i < made.radius.size(); ++i) CHECK(again.radius[i] == made.radius[i]);
+    // The key follows every paste setting, and the sand key ignores them.
+    SpecimenSpec sand = spec;
+    sand.paste.reset();
+    const std::uint64_t sand_key = packing_key(curve, sand);
+    CHECK(packing_key(curve, spec) == sand_key);
+    const std::uint64_t key = paste_packing_key(sand_key, *spec.paste);
+    PasteSettings other = *spec.paste;
+    other.paste.min_diameter = other.paste.max_diameter = 0.11e-3;
+    CHECK(paste_packing_key(sand_key, other) != key);
+    other = *spec.paste;
+    other.mix.water_cement_ratio = 0.5;
+    CHECK(paste_packing_key(sand_key, other) != key);
+    // A damaged family file is an error naming it.
+    for (const auto& entry : fs::directory_iterator(dir.path))
+        if (entry.path().extension() == ".family") std::ofstream(entry.path(), std::ios::app) << "x";
+    CHECK_THROWS_WITH(load_or_generate(curve, spec, dir.path), Contains(".family"));
+}
+
+TEST_CASE("paste specimen: bond families in the bonded cube", "[paste]") {
+    const test::TempDir dir("paste-bonds");
+    const Packing k = load_or_generate(test::pre_blended_curve(), small_paste_spec(), dir.path);
+    MaterialParams m;
+    m.bond.tensile_strength_mean = 4.0e6;
+    m.bond.cohesion_mean = 8.0e6;
+    m.bond_gap_fraction = 0.5;
+    m.families.itz_strength_factor = 0.5;
+    m.families.itz_modulus_factor = 0.8;
+    CubeTestSpec spec;
+    spec.max_settle_steps = 0;
+    CubeTestResult r;
+    const World w = settled_cube_specimen(k, m, spec, r);
+    std::size_t paste_paste = 0, itz = 0;
+    for (const ParallelBond& b : w.bonds()) {
+        const std::uint8_t fi = k.family[static_cast<std::size_t>(b.i)], fj = k.family[static_cast<std::size_t>(b.j)];
+        REQUIRE_FALSE((fi == kSandFamily && fj == kSandFamily));  // sand-sand: frictional only
+        const BondParams& p = w.bond_family_params()[b.family_pair];
+        if (fi != fj) {
+            ++itz;
+            CHECK(b.tensile_strength == 2.0e6);
+            CHECK(p.effective_modulus == Approx(0.8 * m.bond.effective_modulus));
+        } else {
+            ++paste_paste;
+            CHECK(b.tensile_strength == 4.0e6);
+            CHECK(p.effective_modulus == m.bond.effective_modulus);
+        }
+    }
+    CHECK(itz > 0);
+    CHECK(paste_paste > 0);
+    // Paste particles carry the paste they stand for: density = paste density / solid fraction.
+    for (std::size_t i = 0; i < k.family.size(); ++i)
+        if (k.family[i] == kPasteFamily) {
+            const double r3 = k.radius[i] * k.radius[i] * k.radius[i];
+            CHECK(w.particles().mass[i] == Approx(k.paste_density * 4.0 / 3.0 * M_PI * r3));
+            break;
+        }
+    // sand_sand = bonded adds the sand-sand pairs.
+    m.families.sand_sand_bonded = true;
+    CubeTestResult r2;
+    CHECK(settled_cube_specimen(k, m, spec, r2).bonds().size() > w.bonds().size());
+}
+
+TEST_CASE("paste specimen: the cube test is bitwise the same for 1, 2 and 3 threads", "[paste][determinism]") {
+    const test::TempDir dir("paste-threads");
+    const Packing k = load_or_generate(test::pre_blended_curve(), small_paste_spec(), dir.path);
+    MaterialParams m;
+    m.contact.effective_modulus = 5.0e9;
+    m.bond.effective_modulus = 5.0e9;
+    m.bond.tensile_strength_mean = 3.0e6;
+    m.bond.tensile_strength_std = 0.6e6;
+    m.bond_gap_fraction = 0.5;
+    CubeTestSpec spec;
+    spec.max_settle_steps = 200;
+    spec.loading.strain_rate = 40.0;
+    spec.loading.max_strain = 0.0008;
+    spec.loading.ramp_strain = 1e-4;
+    spec.loading.record_interval = 20;
+    std::vector<double> stress[3];
+    for (int threads = 1; threads <= 3; ++threads) {
+#ifdef _OPENMP
+        omp_set_num_threads(threads);
+#endif
+        const CubeTestResult r = run_cube_test(k, m, spec);
+        for (const CurvePoint& p : r.test.curve) stress[threads - 1].push_back(p.stress);
+    }
+    REQUIRE(stress[0].size() > 5);
+    CHECK(stress[0] == stress[1]);
+    CHECK(stress[0] == stress[2]);
+}
