@@ -43,11 +43,18 @@ void print_passing_table(const exp::GrainSample& g) {
 }
 
 // Explicit paste: the sand packing and the paste fill (cached), then the fill's report.
-int run_paste_specimen(const exp::CubeConfig& config, const lab::GradationCurve& curve) {
+int run_paste_specimen(const exp::CubeConfig& config, const lab::GradationCurve& curve, const std::string& file,
+                       bool show) {
+    const std::filesystem::path path = exp::paste_cache_path(curve, config.specimen, config.cache_dir);
+    if (show && !std::filesystem::exists(path))
+        throw lab::InputError(file, 0, "no cached paste specimen for this config (expected " + path.string() +
+                                           "): run `gradem specimen " + file + "` first");
+    if (!std::filesystem::exists(path)) std::fprintf(stderr, "specimen: generating the paste specimen ...\n");
     bool cached = false;
     exp::PasteReport report;
     const exp::Packing packing = exp::load_or_generate_paste(curve, config.specimen, config.cache_dir, &cached, &report);
-    std::printf("paste specimen (%s): N = %zu\n", cached ? "cached" : "generated now", packing.position.size());
+    std::printf("paste specimen %s (%s): N = %zu\n", path.string().c_str(), cached ? "cached" : "generated now",
+                packing.position.size());
     std::printf("%s\n", exp::describe(packing, config.specimen).c_str());
     std::printf("%s\n", exp::describe(report).c_str());
     return 0;
@@ -59,7 +66,7 @@ int run_specimen(const std::vector<std::string>& args) {
     const SpecimenOptions o = parse_specimen(args);
     const exp::CubeConfig config = exp::load_cube_config(o.config);
     const lab::GradationCurve curve = exp::load_gradation(config);
-    if (config.specimen.paste) return run_paste_specimen(config, curve);  // explicit paste (issue 11)
+    if (config.specimen.paste) return run_paste_specimen(config, curve, o.config, o.show);  // explicit paste (issue 11)
     const std::uint64_t key = exp::packing_key(curve, config.specimen);
     const std::filesystem::path path = exp::packing_cache_path(config.cache_dir, key);
     exp::Packing packing;

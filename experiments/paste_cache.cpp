@@ -93,14 +93,21 @@ std::uint64_t paste_packing_key(std::uint64_t sand_key, const PasteSettings& s) 
     return h;
 }
 
+fs::path paste_cache_path(const lab::GradationCurve& curve, const SpecimenSpec& spec, const fs::path& cache_dir) {
+    SpecimenSpec sand_spec = spec;
+    sand_spec.paste.reset();
+    const std::uint64_t key = paste_packing_key(packing_key(curve, sand_spec), *spec.paste);
+    fs::path path = packing_cache_path(cache_dir, key);
+    return path.replace_filename("paste-" + path.filename().string().substr(std::string("packing-").size()));
+}
+
 Packing load_or_generate_paste(const lab::GradationCurve& curve, const SpecimenSpec& spec, const fs::path& cache_dir,
                                bool* was_cached, PasteReport* report) {
     SpecimenSpec sand_spec = spec;
     sand_spec.paste.reset();
     const std::uint64_t sand_key = packing_key(curve, sand_spec);
     const std::uint64_t key = paste_packing_key(sand_key, *spec.paste);
-    fs::path path = packing_cache_path(cache_dir, key);
-    path.replace_filename("paste-" + path.filename().string().substr(std::string("packing-").size()));
+    const fs::path path = paste_cache_path(curve, spec, cache_dir);
     PasteReport local;
     PasteReport& r = report ? *report : local;
     std::error_code ec;

@@ -23,6 +23,10 @@ inline constexpr std::uint32_t kPasteAlgorithmVersion = 2;  // 2: overlaps remov
 /// Key of the paste specimen made from the sand packing `sand_key` with `settings`.
 std::uint64_t paste_packing_key(std::uint64_t sand_key, const PasteSettings& settings);
 
+/// Where the paste specimen of (curve, spec) is cached: `cache_dir`/paste-<16 hex digits>.bin.
+std::filesystem::path paste_cache_path(const lab::GradationCurve& curve, const SpecimenSpec& spec,
+                                       const std::filesystem::path& cache_dir);
+
 /// The cached explicit-paste specimen of (curve, spec) (spec.paste set), or a new one: the sand
 /// packing from load_or_generate, then fill_paste with the specimen's seed. `report` (optional)
 /// receives the fill's report.
