@@ -24,7 +24,11 @@
 // Simplifications (stated): element stresses are centroid averages (no β̄, no bending stress
 // within an element, so a 1x1 joint cannot break in pure bending); a broken element acts at its
 // centroid only (no partly open elements, no own moment); no residual cohesion (fj_cohres), no
-// gapped/slit elements; the linear contact stays in parallel (PFC's flat joint replaces it).
+// gapped/slit elements; a fully broken joint hands over to the linear contact (PFC keeps the
+// joint as a frictional interface of elements).
+// Contact: by default (BondParams::replaces_contact) an intact joint REPLACES the pair's linear
+// contact (PFC's flatjoint is the pair's whole contact model): its elements alone carry
+// compression; replaces_contact = false keeps the contact in parallel. Installed at zero force.
 // Time step: the undamaged disc (= parallel bond).
 #include <cmath>
 #include <span>

@@ -58,6 +58,11 @@ struct BondParams {
     BondModel model = BondModel::parallel_bond;  ///< which law the bonds follow
     SoftBondParams soft;                    ///< used when model == soft_bond
     FlatJointParams flat;                   ///< used when model == flat_joint
+    /// soft_bond and flat_joint only: while the bond is intact it REPLACES the pair's linear
+    /// contact (PFC softbond/flatjoint: one spring set, the bond carries compression too; the
+    /// linear contact acts once the bond has broken). false: bond and contact act in parallel
+    /// (the parallel bond's arrangement, which the parallel bond always keeps).
+    bool replaces_contact = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

@@ -18,8 +18,12 @@
 // leap-frog's trapezoidal work) -> EnergyLedger::bond_damage; the energy still stored at the
 // break is released -> EnergyLedger::bond_break. Pure tension to break: the total is
 //     G Ā,  G = σ̄_c²/(2 k̄_n) [1 + (1-γ²)/ζ]  [J/m²].
-// Simplifications: the linear contact stays in parallel (as with the parallel bond; PFC's
-// softbond has one spring set); damage is isotropic (one ω on all four components); no shear
+// Contact: by default (BondParams::replaces_contact) an intact soft bond REPLACES the pair's
+// linear contact, as PFC's softbond has one spring set: the bond alone carries compression
+// (undamaged, k̄_n Ā), and the linear contact acts only once the bond has broken
+// (World::compute_contacts). replaces_contact = false keeps the contact in parallel (the
+// parallel bond's arrangement). Installed at zero force (locked-in contact forces are released).
+// Simplifications: damage is isotropic (one ω on all four components); no shear
 // softening; compression never damages. Time step: the undamaged stiffness.
 #include <cmath>
 #include <span>

@@ -105,9 +105,13 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
     last_eval_ = e;
 }
 
-// Phase 2: linear contact law for every Verlet pair, one output slot each.
+// Phase 2: linear contact law for every Verlet pair, one output slot each. A pair whose intact
+// bond replaces the contact (BondParams::replaces_contact; soft bond and flat joint) carries
+// nothing here: its bond is its only spring until it breaks (the bond phase runs after this one,
+// so a bond broken this step lets the contact act from the next step on).
 void World::compute_contacts(double dt, double& strain, double& slip) {
     const auto m = static_cast<std::int64_t>(pairs_.size());
+    const bool bond_replaces = bond_params_.model != BondModel::parallel_bond && bond_params_.replaces_contact;
     std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(m)));
     for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         EnergyPair e;
@@ -119,7 +123,9 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
             const Vec3 d = s.xb - s.xa;
-            if (norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb)) {  // open: carries nothing
+            const bool replaced = bond_replaces && p.bond >= 0 &&
+                                  bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
+            if (replaced || norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb)) {  // replaced or open: nothing
                 p.shear_force = {};
                 out = {};
                 continue;

@@ -101,7 +101,11 @@ void read_parameter(Section& s, Context& ctx, const MaterialParameter& p, Materi
         return;
     }
     if (!p.follows.empty()) p.set(m, find_material_parameter(p.follows)->get(m));  // default: the leader's value
-    if (p.integer) {
+    if (p.flag) {
+        bool v = p.get_int(m) != 0;
+        s.boolean(key.c_str(), v);
+        p.set_int(m, v ? 1 : 0);
+    } else if (p.integer) {
         std::int64_t v = p.get_int(m);
         s.integer(key.c_str(), v);
         if (!p.range.contains(static_cast<double>(v)))

@@ -186,6 +186,15 @@ const std::array kTable = {
         .si_group = "soft_bond", .si_name = "cut_fraction", .core_field = "SoftBondParams::cut_fraction",
         .range = unit_open_right,
         .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
+    // ---- soft bond and flat joint: one spring set (models.md §1, §3) ----
+    MaterialParameter{.key = "bond_replaces_contact", .unit = "-",
+        .description = "true: while intact the bond replaces the linear contact (PFC softbond/flatjoint, one spring set); "
+                       "false: bond and contact in parallel (soft_bond, flat_joint)",
+        .models = kSoftBond | kFlatJoint, .integer = true, .flag = true,
+        .get = si_get<&M::bond, &B::replaces_contact>, .set = si_set<&M::bond, &B::replaces_contact>,
+        .get_int = int_get<&M::bond, &B::replaces_contact>, .set_int = int_set<&M::bond, &B::replaces_contact>,
+        .si_group = "bond", .si_name = "replaces_contact", .core_field = "BondParams::replaces_contact",
+        .range = {0.0, 1.0, false, false}, .calibration = Calibration::fixed_only, .lower = 0.0, .upper = 1.0},
     // ---- flat joint (models.md §3) ----
     MaterialParameter{.key = "radial_elements", .unit = "-", .description = "N_r, elements across the joint radius (flat_joint)",
         .models = kFlatJoint, .integer = true,

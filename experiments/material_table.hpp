@@ -62,6 +62,7 @@ struct MaterialParameter {
     std::string_view description;  ///< what it is (README and messages)
     ModelSet models = kEveryModel; ///< bond models that use it
     bool integer = false;          ///< integer-valued (counts, seeds)
+    bool flag = false;             ///< a yes/no (an integer row 0/1; the config takes true/false)
     bool in_config = true;         ///< false: a calibration-only reparametrisation (no config key)
 
     // --- SI storage in MaterialParams -------------------------------------------------------

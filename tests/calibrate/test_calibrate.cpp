@@ -333,6 +333,6 @@ TEST_CASE("twin experiment, soft bond: the shape search moves the softening fact
         CHECK(d["lab"].get<double>() > 1.5);                      // and it is far above the parallel bond's
     }
     const std::string md = cal::summary_markdown(problem, r);
-    CHECK(md.find("bond model **soft_bond** (cut_fraction = 0.2, softening_factor = 0.25") != std::string::npos);
+    CHECK(md.find("bond model **soft_bond** (bond_replaces_contact = 1, cut_fraction = 0.2, softening_factor = 0.25") != std::string::npos);
     CHECK(md.find("D = E·ε_peak/σ_peak lab") != std::string::npos);
 }

@@ -197,7 +197,7 @@ TEST_CASE("bond model of a calibration: chosen, its parameters checked, part of 
         CHECK(cal::material_key(soft) != soft_key);  // exact: the last bit counts
         exp::MaterialParams flat = pb;
         flat.bond.model = BondModel::flat_joint;
-        CHECK_THAT(cal::material_key(flat), Contains("model=flat_joint radial_elements=1 angular_elements=4 residual_friction="));
+        CHECK_THAT(cal::material_key(flat), Contains("model=flat_joint bond_replaces_contact=1 radial_elements=1 angular_elements=4 residual_friction="));
     }
     SECTION("a ledger of the parallel-bond problem is refused for the soft-bond one") {
         auto model = cal::make_analytic_model(2, 0.001);
@@ -223,7 +223,7 @@ TEST_CASE("the shipped soft-bond and flat-joint calibration configs load within 
     for (const Shipped& s : {Shipped{"joint_soft_bond.toml", BondModel::soft_bond,
                                      {"effective_modulus_gpa", "tensile_strength_mpa", "softening_factor", "cut_fraction"}},
                              Shipped{"joint_flat_joint.toml", BondModel::flat_joint,
-                                     {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "residual_friction"}}}) {
+                                     {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio"}}}) {
         DYNAMIC_SECTION(s.name) {
             std::string text = bytes(configs / s.name);
             std::string quoted_base = "\"";  // built in steps: GCC 12 warns (-Wrestrict) on "\"" + s + "\""

@@ -261,6 +261,7 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
         CHECK(c.material.bond.model == BondModel::soft_bond);
         CHECK(c.material.bond.soft.softening_factor == 0.4);
         CHECK(c.material.bond.soft.cut_fraction == 0.1);
+        CHECK(c.material.bond.replaces_contact);  // the default: one spring set (PFC softbond)
         const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
         CHECK(j["display"]["model"] == "soft_bond");
         CHECK(j["display"]["softening_factor"] == 0.4);
@@ -270,8 +271,10 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
     SECTION("flat joint") {
         const CubeConfig c = load_cube_config(write(dir.path / "f.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
                                                                        "model = \"flat_joint\"\nradial_elements = 2\n"
-                                                                       "angular_elements = 3\nresidual_friction = 0.6\n"));
+                                                                       "angular_elements = 3\nresidual_friction = 0.6\n"
+                                                                       "bond_replaces_contact = false\n"));
         CHECK(c.material.bond.model == BondModel::flat_joint);
+        CHECK_FALSE(c.material.bond.replaces_contact);
         CHECK(c.material.bond.flat.radial_elements == 2);
         CHECK(c.material.bond.flat.angular_elements == 3);
         CHECK(c.material.bond.flat.residual_friction == 0.6);
@@ -307,6 +310,10 @@ TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[
                                    "set model = \"flat_joint\""});
         write(file, config_with("material", "model = \"soft_bond\"\nresidual_friction = 0.5"));
         require_rejected(file, 5, {"'material.residual_friction' belongs to bond model flat_joint"});
+        write(file, config_with("material", "bond_replaces_contact = true"));
+        require_rejected(file, 4, {"'material.bond_replaces_contact' belongs to bond model soft_bond, flat_joint"});
+        write(file, config_with("material", "model = \"soft_bond\"\nbond_replaces_contact = 1"));
+        require_rejected(file, 5, {"key 'material.bond_replaces_contact' = 1: expected true or false"});
     }
     SECTION("shape parameters out of range") {
         for (const auto& [line, expected] : std::vector<std::pair<std::string, std::string>>{
@@ -358,7 +365,8 @@ TEST_CASE("material table: one row per key, defaults in range, ranges agree with
         }
         // Just below the lower bound: the table says so in config units, and if core checks
         // the field too, its message names a field that maps back to this row.
-        if (p.in_config && std::isfinite(p.range.lower) && p.applies_to(BondModel::parallel_bond) == false) {
+        if (p.flag) CHECK((p.integer && p.range.lower == 0.0 && p.range.upper == 1.0));  // a yes/no: nothing below it
+        if (p.in_config && !p.flag && std::isfinite(p.range.lower) && p.applies_to(BondModel::parallel_bond) == false) {
             m.bond.model = p.applies_to(BondModel::soft_bond) ? BondModel::soft_bond : BondModel::flat_joint;
             const double below = p.range.lower_open ? p.range.lower : p.range.lower - 1.0;
             if (p.integer) p.set_int(m, static_cast<std::int64_t>(below));

@@ -1,0 +1,176 @@
+// gradem-model-sweep: how a bond model's shape parameters move the cube test's shape index
+// D = E ε_peak/σ_peak (issue 9), with its modulus, peak and strain at peak, one JSON row per
+// cube test. The lab's D is 1.71 (pre-blended) and 2.10 (Van Buren); the homogeneity of the
+// model (calibrate/README.md) lets the calibration rescale E and the peak freely, so D is the
+// one number a shape parameter must move for the strain at peak to be met.
+//
+//   gradem-model-sweep <cube config.toml> [--model M] [--set key=value]...
+//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2]
+//
+// The base material is the config's [material] with --model and every --set applied (keys and
+// units of the material table, experiments/material_table.hpp; set as the calibration sets them,
+// so a strength keeps its cohesion ratio). Each --sweep key is varied alone around the base (one
+// at a time), every value on every sand and seed; the base point itself is run once. Packings come
+// from the config's packing cache (generated if missing). Run with OMP_NUM_THREADS=1.
+// Output, stdout, one object per line:
+//   {"model", "param", "value", "sand", "seed", "modulus_gpa", "peak_mpa", "strain_at_peak",
+//    "shape_index_d", "particles", "bonds", "broken", "steps", "wall_s", "particle_steps_per_s",
+//    "status"}
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "experiments/cube_config.hpp"
+#include "experiments/cube_test.hpp"
+#include "experiments/material_table.hpp"
+#include "experiments/packing_cache.hpp"
+
+using namespace gradem;
+
+namespace {
+
+struct Sweep {
+    std::string key;
+    std::vector<double> values;
+};
+
+struct Options {
+    std::string config;
+    std::string model;
+    std::vector<std::pair<std::string, double>> sets;
+    std::vector<Sweep> sweeps;
+    std::vector<std::string> sands;
+    std::vector<std::uint64_t> seeds{1};
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    for (std::string item; std::getline(in, item, sep);)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+double number(const std::string& text, const std::string& what) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0') throw std::invalid_argument(what + ": '" + text + "' is not a number");
+    return v;
+}
+
+const exp::MaterialParameter& row(const std::string& key) {
+    const exp::MaterialParameter* p = exp::find_material_parameter(key);
+    if (!p) throw std::invalid_argument("unknown material key '" + key + "' (see experiments/material_table.cpp)");
+    return *p;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int k = 1; k < argc; ++k) {
+        const std::string a = argv[k];
+        auto value = [&]() -> std::string {
+            if (k + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+            return argv[++k];
+        };
+        if (a == "--model") o.model = value();
+        else if (a == "--set" || a == "--sweep") {
+            const std::string v = value();
+            const auto eq = v.find('=');
+            if (eq == std::string::npos) throw std::invalid_argument(a + " " + v + ": expected key=value");
+            const std::string key = v.substr(0, eq);
+            (void)row(key);
+            if (a == "--set") o.sets.emplace_back(key, number(v.substr(eq + 1), a + " " + key));
+            else {
+                Sweep s{key, {}};
+                for (const std::string& x : split(v.substr(eq + 1), ',')) s.values.push_back(number(x, a + " " + key));
+                o.sweeps.push_back(s);
+            }
+        } else if (a == "--sands") o.sands = split(value(), ',');
+        else if (a == "--seeds") {
+            o.seeds.clear();
+            for (const std::string& x : split(value(), ',')) o.seeds.push_back(static_cast<std::uint64_t>(number(x, a)));
+        } else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
+        else throw std::invalid_argument("unknown argument '" + a + "'");
+    }
+    if (o.config.empty())
+        throw std::invalid_argument("usage: gradem-model-sweep <cube config.toml> [--model M] [--set key=value]... "
+                                    "[--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2]");
+    return o;
+}
+
+void apply(exp::MaterialParams& m, const std::string& key, double value) {
+    const exp::MaterialParameter& p = row(key);
+    if (!p.applies_to(m.bond.model))
+        throw std::invalid_argument("material key '" + key + "' belongs to " + exp::model_names(p.models));
+    if (p.integer) p.set_int(m, static_cast<std::int64_t>(value));
+    else exp::apply_calibration_value(p, m, value);
+}
+
+std::string json_string(const std::string& s) { return "\"" + s + "\""; }
+
+void run_point(const exp::CubeConfig& base, const exp::MaterialParams& material, const std::string& param,
+               double value, const Options& o) {
+    if (auto why = material.invalid_reason()) throw std::invalid_argument(param + " = " + std::to_string(value) + ": " + *why);
+    for (const std::string& sand : o.sands) {
+        exp::CubeConfig c = base;
+        c.sand = sand;
+        const lab::GradationCurve curve = exp::load_gradation(c);
+        for (std::uint64_t seed : o.seeds) {
+            exp::SpecimenSpec spec = c.specimen;
+            spec.seed = seed;
+            const exp::Packing packing = exp::load_or_generate(curve, spec, c.cache_dir);
+            exp::CubeTestSpec test = c.test;
+            test.snapshot = {};
+            test.loading.platen_friction = material.platen_friction;
+            test.loading.strain_rate = c.auto_strain_rate ? exp::quasi_static_strain_rate(packing, material)
+                                                          : c.test.loading.strain_rate;
+            const exp::CubeTestResult r = exp::run_cube_test(packing, material, test);
+            const double e = r.macro.chord_modulus_pa, peak = r.macro.peak_stress_pa, eps = r.macro.strain_at_peak;
+            const double wall = r.test.wall_seconds;
+            std::printf(
+                "{\"model\": %s, \"param\": %s, \"value\": %.6g, \"sand\": %s, \"seed\": %llu, \"modulus_gpa\": %.5g, "
+                "\"peak_mpa\": %.5g, \"strain_at_peak\": %.5g, \"shape_index_d\": %.4f, \"particles\": %zu, "
+                "\"bonds\": %zu, \"broken\": %zu, \"steps\": %lld, \"wall_s\": %.3f, \"particle_steps_per_s\": %.4g, "
+                "\"status\": %s}\n",
+                json_string(bond_model_name(material.bond.model)).c_str(), json_string(param).c_str(), value,
+                json_string(sand).c_str(), static_cast<unsigned long long>(seed), e * 1e-9, peak * 1e-6, eps,
+                peak > 0.0 ? e * eps / peak : 0.0, r.particles, r.bonds, r.cracks.size(),
+                static_cast<long long>(r.test.steps), wall,
+                wall > 0.0 ? static_cast<double>(r.particles) * static_cast<double>(r.test.steps) / wall : 0.0,
+                json_string(r.diverged() ? "diverged" : r.test.stop_reason).c_str());
+            std::fflush(stdout);
+        }
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        Options o = parse(argc, argv);
+        const exp::CubeConfig base = exp::load_cube_config(o.config);
+        if (o.sands.empty()) o.sands = {base.sand};
+        exp::MaterialParams material = base.material;
+        if (!o.model.empty()) {
+            const auto m = parse_bond_model(o.model);
+            if (!m) throw std::invalid_argument("--model " + o.model + ": unknown (known: " + exp::bond_model_names() + ")");
+            material.bond.model = *m;
+        }
+        for (const auto& [key, v] : o.sets) apply(material, key, v);
+        run_point(base, material, "base", 0.0, o);
+        for (const Sweep& s : o.sweeps)
+            for (double v : s.values) {
+                exp::MaterialParams m = material;
+                apply(m, s.key, v);
+                run_point(base, m, s.key, v, o);
+            }
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gradem-model-sweep: %s\n", e.what());
+        return 2;
+    }
+}
