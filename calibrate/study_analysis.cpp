@@ -193,9 +193,9 @@ void run_model_form(const StudyConfig& cfg, StudyResult& result) {
                 for (Quantity q : kQuantities)
                     if (r.value("quantity", "") == to_string(q)) {
                         const int k = static_cast<int>(q);
-                        err[k] = r["rel_error"].is_number() ? r["rel_error"].get<double>() : NAN;
-                        sim[k] = r["sim_mean"].is_number() ? r["sim_mean"].get<double>() : NAN;
-                        lab[k] = r["lab_mean"].is_number() ? r["lab_mean"].get<double>() : NAN;
+                        err[k] = common::number_or_nan(r, "rel_error");
+                        sim[k] = common::number_or_nan(r, "sim_mean");
+                        lab[k] = common::number_or_nan(r, "lab_mean");
                     }
             }
             const double d_sim = sim[0] * sim[2] / sim[1], d_lab = lab[0] * lab[2] / lab[1];
