@@ -1,6 +1,7 @@
 // The MPI executor end to end: mpirun --allow-run-as-root --oversubscribe -np 3 on this
 // machine (rank 0 coordinates, 2 worker ranks). The same answer as the thread executor,
-// bitwise (analytic stand-in and a tiny DEM problem); a worker that exits mid-run ends the
+// bitwise (analytic stand-in and a tiny DEM problem), for gradem calibrate and gradem study
+// (a resolution study: one model per cube edge on every worker); a worker that exits mid-run ends the
 // job without a hang and the rerun resumes from the ledger; a job killed as a whole resumes
 // too; a worker that stops answering is given up after timeout + grace; bad setups (one
 // rank, a mismatched build, a rank without the packing cache, a bad config) end with one
@@ -298,6 +299,36 @@ TEST_CASE("mpirun -np 3 gradem study: the thread run's study bitwise, its cube t
     for (const auto& [key, r] : tb) ++per_rank[r.rank];
     CHECK(per_rank[0] == 0);
     CHECK(per_rank[1] + per_rank[2] == 6);
+}
+
+TEST_CASE("mpirun -np 3 gradem study: a tiny DEM resolution study, bitwise the thread run, each edge's model on the workers",
+          "[calibrate][mpi]") {
+    TempDir dir("study-mpi-dem");
+    const fs::path cfg = dem_problem(dir.path);
+    const Finished calibration = run({GRADEM_BIN, "calibrate", cfg.string(), "--out", "cal"}, dir.path, 300);
+    INFO(calibration.output);
+    REQUIRE(calibration.exit_code == 0);
+    // Two edges: two DEM models (other packings, other fingerprints), so the workers run
+    // requests of both cases (sand 0 of case 2 is StudyModels sand 1).
+    test::write_text(dir.path / "resolution.toml", "[study]\nkind = \"resolution\"\ncalibration = \"cal/summary.json\"\n"
+                                                   "edges_mm = [1.6, 1.8]\nseeds = [1, 2]\n[run]\nworkers = 2\n[output]\ndir = \"study\"\n");
+    const Finished threads = run({GRADEM_BIN, "study", "resolution.toml", "--out", "threads"}, dir.path, 300);
+    INFO(threads.output);
+    REQUIRE(threads.exit_code == 0);
+    const Finished ranks = run(mpirun(3, {GRADEM_BIN, "study", "resolution.toml", "--out", "mpi"}), dir.path, 300);
+    INFO(ranks.output);
+    REQUIRE(ranks.exit_code == 0);
+    CHECK_THAT(ranks.output, Contains("worker ranks loaded the packings"));
+    const auto a = read_json(dir.path / "threads" / "study.json"), b = read_json(dir.path / "mpi" / "study.json");
+    CHECK(without_wall_times(a["data"]) == without_wall_times(b["data"]));
+    CHECK(without_wall_times(a["cases"]) == without_wall_times(b["cases"]));
+    const auto ta = ledger_rows(dir.path / "threads" / "ledger.sqlite"), tb = ledger_rows(dir.path / "mpi" / "ledger.sqlite");
+    REQUIRE(ta.size() == 4);  // 2 edges x 2 seeds, one sand: every run is a DEM run of its own
+    check_same_runs(ta, tb);
+    for (const auto& [key, r] : tb) {
+        CHECK(r.status == "ok");
+        CHECK((r.rank == 1 || r.rank == 2));
+    }
 }
 
 namespace {
