@@ -18,6 +18,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/mpi_launch.hpp"
 #include "calibrate/calibration.hpp"
 #ifdef GRADEM_HAVE_MPI
 #include "calibrate/mpi_executor.hpp"
@@ -60,11 +61,7 @@ void print_progress(const cal::Progress& p) {
 
 cal::CalibrationProblem load_problem(const CalibrateOptions& o) {
     cal::CalibrationProblem problem = cal::load_calibration_problem(o.config);
-    if (!o.out.empty()) {
-        const bool default_ledger = problem.ledger == problem.out_dir / "ledger.sqlite";
-        problem.out_dir = o.out;
-        if (default_ledger) problem.ledger = problem.out_dir / "ledger.sqlite";
-    }
+    apply_out_option(o.out, problem.out_dir, problem.ledger);
     if (o.max_runs) problem.solver.max_runs = o.max_runs;
     if (o.workers) problem.workers = o.workers;
     return problem;
@@ -105,10 +102,7 @@ int run_calibrate(const std::vector<std::string>& args) {
             [&](cal::CubeModel& model, cal::mpi::MpiExecutor& executor) { return calibrate_and_report(problem, model, executor); });
     }
 #else
-    // Several copies of a build without MPI would each run the whole calibration into one ledger.
-    if (cal::started_by_mpi_launcher())
-        throw std::runtime_error("this gradem was built without MPI (GRADEM_MPI=OFF or no Open MPI found): run it without mpirun, "
-                         "or rebuild with libopenmpi-dev installed");
+    refuse_mpi_launch_without_mpi();
 #endif
     const cal::CalibrationProblem problem = load_problem(o);
     auto model = cal::make_model(problem);

@@ -5,6 +5,7 @@
 // exits 0); a bad option or value throws UsageError with CLI11's message (exit 2).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,15 @@ inline void parse_command(CLI::App& app, std::vector<std::string> args) {
     } catch (const CLI::ParseError& e) {
         throw UsageError(std::string(e.what()) + " (see " + app.get_name() + " --help)");
     }
+}
+
+/// `--out DIR` of calibrate and study: the results go to DIR (when given), and so does the
+/// ledger unless the file named one of its own (`output.ledger`).
+inline void apply_out_option(const std::string& out, std::filesystem::path& out_dir, std::filesystem::path& ledger) {
+    if (out.empty()) return;
+    const bool default_ledger = ledger == out_dir / "ledger.sqlite";
+    out_dir = out;
+    if (default_ledger) ledger = out_dir / "ledger.sqlite";
 }
 
 }  // namespace gradem::app

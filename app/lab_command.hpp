@@ -1,5 +1,6 @@
 #pragma once
-// `gradem lab ...`: the command-line entry of the lab-data side (dispatched from app/main.cpp).
+// `gradem lab ...`: the command-line entry of the lab-data side (dispatched from app/main.cpp;
+// the readers are lab_data's, the writers reports/lab_report.hpp's).
 
 #include <filesystem>
 #include <functional>
@@ -10,7 +11,7 @@
 namespace gradem::lab {
 
 /// Called once the output files are written, with their folder and the stream for messages (the
-/// app makes report.html there; lab_data stays a leaf library).
+/// app makes report.html there).
 using AfterLabOutputs = std::function<void(const std::filesystem::path& out_dir, std::ostream& out)>;
 
 /// Runs `gradem lab` with `args` (what follows "lab" on the command line). Prints to stdout,

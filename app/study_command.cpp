@@ -9,12 +9,12 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "app/mpi_launch.hpp"
 #include "calibrate/study.hpp"
 #include "calibrate/study_models.hpp"
 #ifdef GRADEM_HAVE_MPI
@@ -43,11 +43,7 @@ StudyOptions parse_study(const std::vector<std::string>& args) {
 
 cal::StudyConfig load_config(const StudyOptions& o) {
     cal::StudyConfig config = cal::load_study_config(o.file);
-    if (!o.out.empty()) {
-        const bool default_ledger = config.ledger == config.out_dir / "ledger.sqlite";
-        config.out_dir = o.out;
-        if (default_ledger) config.ledger = config.out_dir / "ledger.sqlite";
-    }
+    apply_out_option(o.out, config.out_dir, config.ledger);
     if (o.workers) config.workers = o.workers;
     return config;
 }
@@ -92,10 +88,7 @@ int run_study(const std::vector<std::string>& args) {
             });
     }
 #else
-    // Several copies of a build without MPI would each run the whole study into one ledger.
-    if (cal::started_by_mpi_launcher())
-        throw std::runtime_error("this gradem was built without MPI (GRADEM_MPI=OFF or no Open MPI found): run it without mpirun, "
-                                 "or rebuild with libopenmpi-dev installed");
+    refuse_mpi_launch_without_mpi();
 #endif
     return study_and_report(load_config(o), nullptr);
 }

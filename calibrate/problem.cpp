@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/json_number.hpp"
 #include "common/toml_section.hpp"
 #include "experiments/material_table.hpp"
 
@@ -267,8 +268,8 @@ TargetStat read_stat(const nlohmann::json& sand, const char* key, double to_si, 
         throw InputError(file, 0, "sand '" + name + "': no '" + key + "' statistics (is this a lab_results.json of `gradem lab`?)");
     const auto& j = sand[key];
     TargetStat t;
-    t.mean = j["mean"].is_number() ? j["mean"].get<double>() * to_si : std::nan("");
-    t.std = j.contains("std") && j["std"].is_number() ? j["std"].get<double>() * to_si : std::nan("");
+    t.mean = common::number_or_nan(j, "mean") * to_si;
+    t.std = common::number_or_nan(j, "std") * to_si;
     t.n = j.contains("n") && j["n"].is_number_integer() ? j["n"].get<int>() : 0;
     if (!(std::isfinite(t.mean) && t.mean > 0.0))
         throw InputError(file, 0, "sand '" + name + "': " + key + ".mean is missing or not positive - the lab results are inconsistent");

@@ -11,7 +11,7 @@ namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
-using common::json_number;
+constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 using common::InputError;
 
 const char* label(Quantity q) {
@@ -47,8 +47,8 @@ void summarise_convergence(StudyResult& result) {
             t.rows.push_back({{cases.front().sands[s], label(q), at, fmt_num(100.0 * last_change, 3) + " %",
                                fmt_num(100.0 * last_std, 3) + " %"}});
             conv.push_back({{"sand", cases.front().sands[s]}, {"quantity", to_string(q)}, {"converged", converged},
-                            {"from_x", converged ? json(cases[from].x) : json(nullptr)}, {"last_relative_change", json_number(last_change)},
-                            {"relative_seed_std", json_number(last_std)}});
+                            {"from_x", converged ? json(cases[from].x) : json(nullptr)}, {"last_relative_change", number(last_change)},
+                            {"relative_seed_std", number(last_std)}});
             if (q != Quantity::strain)
                 result.verdict.push_back(cases.front().sands[s] + ", " + label(q) + ": " +
                                          (converged ? "changes less than the seed spread from " + at + " on"
@@ -78,12 +78,12 @@ void summarise_truncation(StudyResult& result) {
                 const double noise = 1.96 * std::sqrt(a.std * a.std / std::max(1, a.n) + f.std * f.std / std::max(1, f.n));
                 within = within && std::fabs(a.mean - f.mean) <= noise;
                 row.cells.push_back(fmt_num(100.0 * err, 3) + " %");
-                errors[to_string(q)] = json_number(err);
+                errors[to_string(q)] = number(err);
             }
             row.cells.push_back(within ? "yes" : "no");
             t.rows.push_back(row);
-            rows.push_back({{"x", c.x}, {"sand", c.sands[s]}, {"particles_ratio", json_number(c.mean_particles(s) / finest.mean_particles(s))},
-                            {"wall_ratio", json_number(c.mean_wall_seconds(s) / finest.mean_wall_seconds(s))},
+            rows.push_back({{"x", c.x}, {"sand", c.sands[s]}, {"particles_ratio", number(c.mean_particles(s) / finest.mean_particles(s))},
+                            {"wall_ratio", number(c.mean_wall_seconds(s) / finest.mean_wall_seconds(s))},
                             {"relative_error", errors}, {"within_noise", within}});
         }
     result.tables.push_back(t);
@@ -149,7 +149,7 @@ void run_sensitivity(const CalibratedPoint& point, StudyRunner& runner, StudyRes
                 const Sample m = sample_of(e);
                 const double se = m.n > 1 ? m.std / std::sqrt(static_cast<double>(m.n)) : std::nan("");
                 row.cells.push_back(mean_pm(m.mean, se, 3));
-                j[to_string(q)] = {{"elasticity", json_number(m.mean)}, {"std_error", json_number(se)}, {"n", m.n}};
+                j[to_string(q)] = {{"elasticity", number(m.mean)}, {"std_error", number(se)}, {"n", m.n}};
             }
             t.rows.push_back(row);
             rows.push_back(j);
@@ -193,9 +193,9 @@ void run_model_form(const StudyConfig& cfg, StudyResult& result) {
                 for (Quantity q : kQuantities)
                     if (r.value("quantity", "") == to_string(q)) {
                         const int k = static_cast<int>(q);
-                        err[k] = r["rel_error"].is_number() ? r["rel_error"].get<double>() : NAN;
-                        sim[k] = r["sim_mean"].is_number() ? r["sim_mean"].get<double>() : NAN;
-                        lab[k] = r["lab_mean"].is_number() ? r["lab_mean"].get<double>() : NAN;
+                        err[k] = common::number_or_nan(r, "rel_error");
+                        sim[k] = common::number_or_nan(r, "sim_mean");
+                        lab[k] = common::number_or_nan(r, "lab_mean");
                     }
             }
             const double d_sim = sim[0] * sim[2] / sim[1], d_lab = lab[0] * lab[2] / lab[1];
@@ -203,10 +203,10 @@ void run_model_form(const StudyConfig& cfg, StudyResult& result) {
             t.rows.push_back({{cp.bond_model, file.parent_path().filename().string(), std::to_string(j.value("dem_test_runs", 0)),
                                fmt_num(j.value("wall_seconds", 0.0), 4), sand, fmt_num(100 * err[0], 3) + " %",
                                fmt_num(100 * err[1], 3) + " %", fmt_num(100 * err[2], 3) + " %", fmt_num(d_sim, 3), fmt_num(d_lab, 3)}});
-            m["sands"].push_back({{"sand", sand}, {"modulus_error", json_number(err[0])}, {"peak_error", json_number(err[1])},
-                                  {"strain_error", json_number(err[2])}, {"shape_index_sim", json_number(d_sim)}, {"shape_index_lab", json_number(d_lab)}});
+            m["sands"].push_back({{"sand", sand}, {"modulus_error", number(err[0])}, {"peak_error", number(err[1])},
+                                  {"strain_error", number(err[2])}, {"shape_index_sim", number(d_sim)}, {"shape_index_lab", number(d_lab)}});
         }
-        m["worst_error"] = json_number(worst);
+        m["worst_error"] = number(worst);
         models.push_back(m);
         if (worst < best_score) best_score = worst, best = cp.bond_model + " (" + file.string() + ")";
     }

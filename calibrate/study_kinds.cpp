@@ -15,7 +15,7 @@ namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
-using common::json_number;
+constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 using common::InputError;
 
 double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
@@ -30,7 +30,7 @@ std::string interval_text(const Interval& i, double scale) {
 }
 
 json interval_json(const Interval& i, double scale) {
-    return {{"estimate", json_number(i.estimate * scale)}, {"low", json_number(i.low * scale)}, {"high", json_number(i.high * scale)}};
+    return {{"estimate", number(i.estimate * scale)}, {"low", number(i.low * scale)}, {"high", number(i.high * scale)}};
 }
 
 bool excludes_zero(const Interval& i) { return std::isfinite(i.low) && (i.low > 0.0 || i.high < 0.0); }
@@ -70,10 +70,10 @@ StudyTable case_table(const std::string& title, const std::string& x_name, const
 json case_samples_json(const StudyCase& c) {
     json sands = json::array();
     for (std::size_t s = 0; s < c.sands.size(); ++s) {
-        json j = {{"sand", c.sands[s]}, {"particles", c.mean_particles(s)}, {"wall_seconds_per_run", json_number(c.mean_wall_seconds(s))}};
+        json j = {{"sand", c.sands[s]}, {"particles", c.mean_particles(s)}, {"wall_seconds_per_run", number(c.mean_wall_seconds(s))}};
         for (Quantity q : kQuantities) {
             const Sample m = c.sample(s, q);
-            j[to_string(q)] = {{"mean", json_number(m.mean * display(q))}, {"std", json_number(m.std * display(q))}, {"n", m.n}, {"unit", unit(q)}};
+            j[to_string(q)] = {{"mean", number(m.mean * display(q))}, {"std", number(m.std * display(q))}, {"n", m.n}, {"unit", unit(q)}};
         }
         sands.push_back(j);
     }
@@ -114,8 +114,8 @@ void run_gradation_effect(const CalibratedPoint& point, StudyRunner& runner, Stu
                                        interval_text(sim, k), interval_text(lab, k), verdict}});
                 pairs.push_back({{"quantity", to_string(q)}, {"unit", unit(q)}, {"sand_a", p.sands[a]}, {"sand_b", p.sands[b]},
                                  {"simulated", interval_json(sim, k)}, {"lab", interval_json(lab, k)},
-                                 {"simulated_a", {{"mean", json_number(sa.mean * k)}, {"std", json_number(sa.std * k)}, {"n", sa.n}}},
-                                 {"simulated_b", {{"mean", json_number(sb.mean * k)}, {"std", json_number(sb.std * k)}, {"n", sb.n}}},
+                                 {"simulated_a", {{"mean", number(sa.mean * k)}, {"std", number(sa.std * k)}, {"n", sa.n}}},
+                                 {"simulated_b", {{"mean", number(sb.mean * k)}, {"std", number(sb.std * k)}, {"n", sb.n}}},
                                  {"lab_a", {{"mean", ta.mean * k}, {"std", ta.std * k}, {"n", ta.n}}},
                                  {"lab_b", {{"mean", tb.mean * k}, {"std", tb.std * k}, {"n", tb.n}}},
                                  {"verdict", verdict}});

@@ -155,3 +155,9 @@ toml::table parse_toml_file(const fs::path& file, Context& ctx);
 void check_tables(const Context& ctx, const toml::table& root, const std::vector<std::string>& known_tables);
 
 }  // namespace gradem::common::toml_io
+
+// The config readers of experiments/ name it toml_io (it lived in experiments/ before): the
+// same namespace, not a copy.
+namespace gradem::exp {
+namespace toml_io = common::toml_io;
+}  // namespace gradem::exp

@@ -15,11 +15,10 @@ namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
-using common::json_number;
+constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 using common::clock_text;
 
 constexpr double kMetTolerance = 0.05;  // a target counts as met within 5 % of the lab mean
-
 
 /// Display scale and unit of a quantity.
 double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
@@ -119,9 +118,9 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
             j["scale"] = spec.log_scale ? "log" : "linear";
             const Uncertainty& u = st.uncertainty;
             if (u.computed) {
-                j["std_error"] = spec.log_scale ? json{{"relative", json_number(u.std_error_natural[k])}}
-                                                : json{{"absolute", json_number(u.std_error_natural[k])}};
-                j["one_sigma_interval"] = {json_number(u.low[k]), json_number(u.high[k])};
+                j["std_error"] = spec.log_scale ? json{{"relative", number(u.std_error_natural[k])}}
+                                                : json{{"absolute", number(u.std_error_natural[k])}};
+                j["one_sigma_interval"] = {number(u.low[k]), number(u.high[k])};
             }
         }
         out.push_back(j);
@@ -166,10 +165,10 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
     json targets = json::array();
     for (const TargetRow& r : target_rows(p, st))
         targets.push_back({{"sand", r.sand}, {"role", r.role}, {"quantity", to_string(r.q)}, {"unit", unit(r.q)},
-                           {"lab_mean", json_number(r.lab.mean * display(r.q))}, {"lab_std", json_number(r.lab.std * display(r.q))},
-                           {"lab_n", r.lab.n}, {"sim_mean", json_number(r.sim_mean * display(r.q))},
-                           {"sim_std", json_number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", json_number(r.rel_error)},
-                           {"z", json_number(r.z)}, {"met", std::isfinite(r.rel_error) && std::fabs(r.rel_error) <= kMetTolerance}});
+                           {"lab_mean", number(r.lab.mean * display(r.q))}, {"lab_std", number(r.lab.std * display(r.q))},
+                           {"lab_n", r.lab.n}, {"sim_mean", number(r.sim_mean * display(r.q))},
+                           {"sim_std", number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", number(r.rel_error)},
+                           {"z", number(r.z)}, {"met", std::isfinite(r.rel_error) && std::fabs(r.rel_error) <= kMetTolerance}});
     const SolveResult& s = st.solution;
     const Uncertainty& u = st.uncertainty;
     json j = {{"label", st.label},
@@ -182,14 +181,14 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
               {"targets", targets},
               {"noise_floor_rel_se", {{"modulus", st.noise_floor[0]}, {"peak_stress", st.noise_floor[1]}, {"strain_at_peak", st.noise_floor[2]}}},
               {"identifiability", {{"computed", u.computed}, {"note", u.note}, {"singular_values", u.singular_values},
-                                   {"condition_number", json_number(u.condition)}, {"poorly_identified", u.poorly_identified},
+                                   {"condition_number", number(u.condition)}, {"poorly_identified", u.poorly_identified},
                                    {"difference_runs", u.fd_runs}}},
               {"notes", s.notes},
               {"unmet_targets", unmet_statements(p, st)}};
     json d = json::array();
     for (const ShapeIndexRow& row : shape_index_rows(p, st))
-        d.push_back({{"sand", row.sand}, {"role", row.role}, {"lab", json_number(row.lab)}, {"simulated", json_number(row.sim)},
-                     {"rel_error", json_number(row.sim / row.lab - 1.0)}});
+        d.push_back({{"sand", row.sand}, {"role", row.role}, {"lab", number(row.lab)}, {"simulated", number(row.sim)},
+                     {"rel_error", number(row.sim / row.lab - 1.0)}});
     j["shape_index_d"] = d;
     if (s.homogeneity.done)
         j["homogeneity"] = {{"holds", s.homogeneity.holds}, {"alpha", s.homogeneity.alpha}, {"beta", s.homogeneity.beta},

@@ -16,9 +16,10 @@ namespace gradem::exp {
 namespace {
 
 using json = nlohmann::ordered_json;  // keys in the order written: the headline numbers first
-using common::json_number;
 
 constexpr double kMpa = 1.0e-6, kGpa = 1.0e-9, kMm = 1.0e3;  // SI -> display unit
+
+constexpr auto num = common::json_number<json>;  // a number, or null when it is not finite
 
 double relative_change(double base, double changed) {
     return std::isfinite(base) && std::isfinite(changed) && base != 0.0 ? (changed - base) / base : std::nan("");
@@ -39,14 +40,14 @@ double platen_strain_at(const std::vector<CurvePoint>& curve, std::int64_t step)
 
 json popovics_json(const lab::PopovicsFit& f) {
     return {{"converged", f.converged},
-            {"elastic_modulus_mpa", json_number<json>(f.elastic_modulus_pa * kMpa)},
-            {"elastic_modulus_se_mpa", json_number<json>(f.elastic_modulus_se_pa * kMpa)},
-            {"peak_stress_mpa", json_number<json>(f.peak_stress_pa * kMpa)},
-            {"peak_stress_se_mpa", json_number<json>(f.peak_stress_se_pa * kMpa)},
-            {"strain_at_peak", json_number<json>(f.strain_at_peak)},
-            {"strain_at_peak_se", json_number<json>(f.strain_at_peak_se)},
-            {"n", json_number<json>(f.n)},
-            {"rms_residual_mpa", json_number<json>(f.rms_residual_pa * kMpa)},
+            {"elastic_modulus_mpa", num(f.elastic_modulus_pa * kMpa)},
+            {"elastic_modulus_se_mpa", num(f.elastic_modulus_se_pa * kMpa)},
+            {"peak_stress_mpa", num(f.peak_stress_pa * kMpa)},
+            {"peak_stress_se_mpa", num(f.peak_stress_se_pa * kMpa)},
+            {"strain_at_peak", num(f.strain_at_peak)},
+            {"strain_at_peak_se", num(f.strain_at_peak_se)},
+            {"n", num(f.n)},
+            {"rms_residual_mpa", num(f.rms_residual_pa * kMpa)},
             {"points", f.points},
             {"message", f.message}};
 }
@@ -74,10 +75,10 @@ json specimen_json(const Packing& k, const CubeConfig& c) {
     const std::size_t n = k.radius.size();
     return {{"particles", n},
             {"edge_mm", k.edge() * kMm},
-            {"edge_over_d50", json_number<json>(k.edge_over_d50)},
-            {"d50_mm", json_number<json>(k.grains.d50 * kMm)},
-            {"porosity", json_number<json>(k.porosity)},
-            {"mean_coordination", json_number<json>(k.mean_coordination)},
+            {"edge_over_d50", num(k.edge_over_d50)},
+            {"d50_mm", num(k.grains.d50 * kMm)},
+            {"porosity", num(k.porosity)},
+            {"mean_coordination", num(k.mean_coordination)},
             {"converged", k.converged},
             {"seed", c.specimen.seed},
             {"sand", c.sand.empty() ? c.sieve_csv.string() : c.sand},
@@ -89,12 +90,12 @@ json specimen_json(const Packing& k, const CubeConfig& c) {
 json rate_check_json(const RateCheck& r) {
     return {{"strain_rate_per_s", r.strain_rate},
             {"half_rate_per_s", r.half_rate},
-            {"peak_stress_mpa", json_number<json>(r.peak_stress * kMpa)},
-            {"peak_stress_half_rate_mpa", json_number<json>(r.peak_stress_half * kMpa)},
-            {"chord_modulus_mpa", json_number<json>(r.chord_modulus * kMpa)},
-            {"chord_modulus_half_rate_mpa", json_number<json>(r.chord_modulus_half * kMpa)},
-            {"peak_change", json_number<json>(r.peak_change)},
-            {"modulus_change", json_number<json>(r.modulus_change)},
+            {"peak_stress_mpa", num(r.peak_stress * kMpa)},
+            {"peak_stress_half_rate_mpa", num(r.peak_stress_half * kMpa)},
+            {"chord_modulus_mpa", num(r.chord_modulus * kMpa)},
+            {"chord_modulus_half_rate_mpa", num(r.chord_modulus_half * kMpa)},
+            {"peak_change", num(r.peak_change)},
+            {"modulus_change", num(r.modulus_change)},
             {"stop_reason_half_rate", r.stop_reason_half},
             {"diverged_half_rate", r.diverged_half}};
 }
@@ -149,30 +150,30 @@ std::string macro_json(const CubeTestResult& r, const CubeConfig& c, const Packi
     const double particle_steps = static_cast<double>(r.particles) * static_cast<double>(r.test.steps);
     json j = {
         {"config", c.file.string()},
-        {"peak_stress_mpa", json_number<json>(m.peak_stress_pa * kMpa)},
-        {"strain_at_peak", json_number<json>(m.strain_at_peak)},
-        {"strain_at_peak_platen", json_number<json>(r.strain_at_peak_platen)},
-        {"chord_modulus_mpa", json_number<json>(m.chord_modulus_pa * kMpa)},
-        {"tangent_modulus_mpa", json_number<json>(m.tangent_modulus_pa * kMpa)},
-        {"poisson_ratio", json_number<json>(m.poisson_ratio)},
+        {"peak_stress_mpa", num(m.peak_stress_pa * kMpa)},
+        {"strain_at_peak", num(m.strain_at_peak)},
+        {"strain_at_peak_platen", num(r.strain_at_peak_platen)},
+        {"chord_modulus_mpa", num(m.chord_modulus_pa * kMpa)},
+        {"tangent_modulus_mpa", num(m.tangent_modulus_pa * kMpa)},
+        {"poisson_ratio", num(m.poisson_ratio)},
         {"reduction", {{"status", lab::status_name(m.status)},
                        {"message", m.message},
-                       {"chord_s1_mpa", json_number<json>(m.chord_s1_pa * kMpa)},
-                       {"chord_s2_mpa", json_number<json>(m.chord_s2_pa * kMpa)},
-                       {"chord_strain2", json_number<json>(m.chord_strain2)},
-                       {"strain_at_peak_crosshead", json_number<json>(m.strain_at_peak_crosshead)}}},
+                       {"chord_s1_mpa", num(m.chord_s1_pa * kMpa)},
+                       {"chord_s2_mpa", num(m.chord_s2_pa * kMpa)},
+                       {"chord_strain2", num(m.chord_strain2)},
+                       {"strain_at_peak_crosshead", num(m.strain_at_peak_crosshead)}}},
         {"popovics", popovics_json(m.popovics)},
         {"run", {{"particles", r.particles},
                  {"bonds", r.bonds},
                  {"steps", r.test.steps},
-                 {"time_step_s", json_number<json>(r.time_step)},
-                 {"strain_rate_per_s", json_number<json>(strain_rate)},
-                 {"wall_seconds", json_number<json>(wall)},
-                 {"particle_steps_per_s", json_number<json>(wall > 0.0 ? particle_steps / wall : std::nan(""))},
+                 {"time_step_s", num(r.time_step)},
+                 {"strain_rate_per_s", num(strain_rate)},
+                 {"wall_seconds", num(wall)},
+                 {"particle_steps_per_s", num(wall > 0.0 ? particle_steps / wall : std::nan(""))},
                  {"stop_reason", r.test.stop_reason},
                  {"diverged", r.diverged()},
-                 {"platen_imbalance", json_number<json>(r.platen_imbalance)},
-                 {"settle_ratio", json_number<json>(r.settle_ratio)},
+                 {"platen_imbalance", num(r.platen_imbalance)},
+                 {"settle_ratio", num(r.settle_ratio)},
                  {"settle_steps", r.settle_steps}}},
         {"broken_bonds", {{"tension", tension}, {"shear", shear}, {"total", tension + shear}}},
         {"warnings", r.warnings},

@@ -7,24 +7,23 @@ namespace gradem::lab {
 namespace {
 
 using nlohmann::json;
-using common::json_number;
-
+constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 
 json summary(const SampleSummary& s, double scale) {
-    return {{"n", s.n}, {"mean", json_number(s.mean * scale)}, {"std", json_number(s.std * scale)}, {"cv", json_number(s.cv)},
-            {"min", json_number(s.min * scale)}, {"max", json_number(s.max * scale)}};
+    return {{"n", s.n}, {"mean", number(s.mean * scale)}, {"std", number(s.std * scale)}, {"cv", number(s.cv)},
+            {"min", number(s.min * scale)}, {"max", number(s.max * scale)}};
 }
 
 json popovics(const PopovicsFit& p) {
     return {{"converged", p.converged},
-            {"elastic_modulus_mpa", json_number(p.elastic_modulus_pa / 1e6)},
-            {"elastic_modulus_se_mpa", json_number(p.elastic_modulus_se_pa / 1e6)},
-            {"peak_stress_mpa", json_number(p.peak_stress_pa / 1e6)},
-            {"peak_stress_se_mpa", json_number(p.peak_stress_se_pa / 1e6)},
-            {"strain_at_peak", json_number(p.strain_at_peak)},
-            {"strain_at_peak_se", json_number(p.strain_at_peak_se)},
-            {"n", json_number(p.n)},
-            {"rms_residual_mpa", json_number(p.rms_residual_pa / 1e6)},
+            {"elastic_modulus_mpa", number(p.elastic_modulus_pa / 1e6)},
+            {"elastic_modulus_se_mpa", number(p.elastic_modulus_se_pa / 1e6)},
+            {"peak_stress_mpa", number(p.peak_stress_pa / 1e6)},
+            {"peak_stress_se_mpa", number(p.peak_stress_se_pa / 1e6)},
+            {"strain_at_peak", number(p.strain_at_peak)},
+            {"strain_at_peak_se", number(p.strain_at_peak_se)},
+            {"n", number(p.n)},
+            {"rms_residual_mpa", number(p.rms_residual_pa / 1e6)},
             {"points", p.points}};
 }
 
@@ -39,21 +38,21 @@ json gradation(const SandResult& s) {
     }
     json j = {{"file", sv.file}, {"provenance", sv.provenance}, {"order", "coarsest first"},
               {"sieves", names}, {"sieves_mm", sizes}, {"percent_passing", passing},
-              {"d10_mm", json_number(g.d10_m * 1e3)}, {"d30_mm", json_number(g.d30_m * 1e3)}, {"d50_mm", json_number(g.d50_m * 1e3)},
-              {"d60_mm", json_number(g.d60_m * 1e3)}, {"cu", json_number(g.cu)}, {"cc", json_number(g.cc)},
-              {"uscs", g.uscs}, {"uscs_name", g.uscs_name}, {"fineness_modulus", json_number(g.fineness_modulus)},
-              {"gravel_pct", json_number(g.gravel_fraction * 100)}, {"sand_pct", json_number(g.sand_fraction * 100)},
-              {"fines_pct", json_number(g.fines_fraction * 100)}, {"notes", g.notes}};
+              {"d10_mm", number(g.d10_m * 1e3)}, {"d30_mm", number(g.d30_m * 1e3)}, {"d50_mm", number(g.d50_m * 1e3)},
+              {"d60_mm", number(g.d60_m * 1e3)}, {"cu", number(g.cu)}, {"cc", number(g.cc)},
+              {"uscs", g.uscs}, {"uscs_name", g.uscs_name}, {"fineness_modulus", number(g.fineness_modulus)},
+              {"gravel_pct", number(g.gravel_fraction * 100)}, {"sand_pct", number(g.sand_fraction * 100)},
+              {"fines_pct", number(g.fines_fraction * 100)}, {"notes", g.notes}};
     if (s.c144) {
         json checks = json::array();
         for (const auto& c : s.c144->sieves)
-            checks.push_back({{"sieve", c.designation}, {"opening_mm", c.opening_m * 1e3}, {"percent_passing", json_number(c.passing * 100)},
+            checks.push_back({{"sieve", c.designation}, {"opening_mm", c.opening_m * 1e3}, {"percent_passing", number(c.passing * 100)},
                               {"min_pct", c.min_passing * 100}, {"max_pct", c.max_passing * 100}, {"ok", c.ok}});
         j["c144_conforms"] = s.c144->conforms;
         j["c144_checks"] = checks;
         j["c144_violations"] = s.c144->violations;
-        j["c144_max_retained_consecutive_pct"] = json_number(s.c144->max_retained_consecutive * 100);
-        j["c144_retained_no50_to_no100_pct"] = json_number(s.c144->retained_no50_to_no100 * 100);
+        j["c144_max_retained_consecutive_pct"] = number(s.c144->max_retained_consecutive * 100);
+        j["c144_retained_no50_to_no100_pct"] = number(s.c144->retained_no50_to_no100 * 100);
     } else {
         j["c144_conforms"] = nullptr;
     }
@@ -71,7 +70,7 @@ json sand(const SandResult& s) {
     json checks = json::array();
     for (const auto& b : s.range_checks)
         checks.push_back({{"batch", b.batch}, {"files", b.files}, {"mean_mpa", b.check.mean / 1e6},
-                          {"range_pct", b.check.range_fraction * 100}, {"permissible_pct", json_number(b.check.permissible_fraction * 100)},
+                          {"range_pct", b.check.range_fraction * 100}, {"permissible_pct", number(b.check.permissible_fraction * 100)},
                           {"ok", b.check.ok}, {"discarded", b.discarded_file.empty() ? json(nullptr) : json(b.discarded_file)},
                           {"retest_required", b.check.retest_required}});
     j["c109_range_checks"] = checks;
@@ -84,12 +83,12 @@ json cube(const CubeResult& c) {
     return {{"file", c.file}, {"sand", c.sand}, {"batch", c.batch}, {"format", c.format}, {"representative", c.representative},
             {"loaded_area_mm2", c.geometry.loaded_area_m2() * 1e6}, {"height_mm", c.geometry.height_m * 1e3},
             {"geometry_source", c.geometry.source}, {"columns", c.columns},
-            {"peak_stress_mpa", json_number(r.peak_stress_pa / 1e6)}, {"strain_at_peak", json_number(r.strain_at_peak)},
-            {"strain_at_peak_crosshead", json_number(r.strain_at_peak_crosshead)},
-            {"chord_modulus_mpa", json_number(r.chord_modulus_pa / 1e6)}, {"chord_s1_mpa", json_number(r.chord_s1_pa / 1e6)},
-            {"chord_s2_mpa", json_number(r.chord_s2_pa / 1e6)}, {"chord_strain2", json_number(r.chord_strain2)},
-            {"tangent_modulus_mpa", json_number(r.tangent_modulus_pa / 1e6)}, {"poisson_ratio", json_number(r.poisson_ratio)},
-            {"load_rate_n_per_s", json_number(c.load_rate_n_per_s)}, {"popovics", popovics(r.popovics)},
+            {"peak_stress_mpa", number(r.peak_stress_pa / 1e6)}, {"strain_at_peak", number(r.strain_at_peak)},
+            {"strain_at_peak_crosshead", number(r.strain_at_peak_crosshead)},
+            {"chord_modulus_mpa", number(r.chord_modulus_pa / 1e6)}, {"chord_s1_mpa", number(r.chord_s1_pa / 1e6)},
+            {"chord_s2_mpa", number(r.chord_s2_pa / 1e6)}, {"chord_strain2", number(r.chord_strain2)},
+            {"tangent_modulus_mpa", number(r.tangent_modulus_pa / 1e6)}, {"poisson_ratio", number(r.poisson_ratio)},
+            {"load_rate_n_per_s", number(c.load_rate_n_per_s)}, {"popovics", popovics(r.popovics)},
             {"flags", c.flags}, {"notes", c.notes}};
 }
 
@@ -121,9 +120,9 @@ nlohmann::json lab_stats_to_json(const LabStats& lab) {
     for (const auto& c : lab.comparisons) {
         const double k = scale_of(c.quantity);
         j["comparisons"].push_back({{"quantity", c.quantity}, {"sand_a", c.sand_a}, {"sand_b", c.sand_b},
-                                    {"n_a", c.test.n1}, {"n_b", c.test.n2}, {"mean_difference", json_number(c.test.mean_difference * k)},
-                                    {"welch_t", json_number(c.test.t)}, {"dof", json_number(c.test.dof)}, {"p_value", json_number(c.test.p_value)},
-                                    {"cohens_d", json_number(c.test.cohens_d)}, {"hedges_g", json_number(c.test.hedges_g)}});
+                                    {"n_a", c.test.n1}, {"n_b", c.test.n2}, {"mean_difference", number(c.test.mean_difference * k)},
+                                    {"welch_t", number(c.test.t)}, {"dof", number(c.test.dof)}, {"p_value", number(c.test.p_value)},
+                                    {"cohens_d", number(c.test.cohens_d)}, {"hedges_g", number(c.test.hedges_g)}});
     }
     return j;
 }

@@ -15,8 +15,7 @@ namespace gradem::cal {
 namespace {
 
 using nlohmann::json;
-using common::json_number;
-
+constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 
 json runs_json(const StudyResult& r) {
     json cases = json::array();
@@ -27,8 +26,8 @@ json runs_json(const StudyResult& r) {
             for (std::size_t k = 0; k < c.runs[s].size(); ++k) {
                 const RunOutcome& o = c.runs[s][k];
                 runs.push_back({{"seed", k < r.config.seeds.size() ? r.config.seeds[k] : 0}, {"status", to_string(o.status)},
-                                {"reason", o.reason}, {"modulus_mpa", json_number(o.modulus_pa * 1e-6)}, {"peak_mpa", json_number(o.peak_pa * 1e-6)},
-                                {"strain_at_peak", json_number(o.strain_at_peak)}, {"particles", o.particles}, {"bonds", o.bonds},
+                                {"reason", o.reason}, {"modulus_mpa", number(o.modulus_pa * 1e-6)}, {"peak_mpa", number(o.peak_pa * 1e-6)},
+                                {"strain_at_peak", number(o.strain_at_peak)}, {"particles", o.particles}, {"bonds", o.bonds},
                                 {"steps", o.steps}, {"wall_seconds", o.wall_seconds}});
             }
             sands.push_back({{"sand", c.sands[s]}, {"runs", runs}});

@@ -13,9 +13,10 @@ namespace gradem::exp {
 namespace {
 
 using json = nlohmann::ordered_json;
-using common::json_number;
 
 constexpr double kMpa = 1.0e-6, kMm = 1.0e3;  // SI -> display unit
+
+constexpr auto num = common::json_number<json>;  // a number, or null when it is not finite
 
 // The compression-format document of the tension result (cube_output's macro_json): the
 // blocks both tests share (reduction, run, breaks, warnings, material, specimen, rate check)
@@ -68,28 +69,28 @@ std::string tension_macro_json(const TensionTestResult& r, const CubeConfig& c, 
     json base = shared_document(r, c, k, strain_rate, rate_check);
     const lab::CurveReduction& m = r.cube.macro;
     json reduction = base["reduction"];
-    reduction["chord_lower_strain"] = json_number<json>(r.chord_lower_strain);
+    reduction["chord_lower_strain"] = num(r.chord_lower_strain);
     json compared = nullptr;
     double strength_ratio = std::nan("");
     if (compression) {
         strength_ratio = ratio(compression->peak_stress, m.peak_stress_pa);
         compared = {{"macro_json", compression->file.string()},
-                    {"peak_stress_mpa", json_number<json>(compression->peak_stress * kMpa)},
-                    {"chord_modulus_mpa", json_number<json>(compression->chord_modulus * kMpa)},
-                    {"strength_ratio_c_over_t", json_number<json>(strength_ratio)},
-                    {"modulus_ratio_t_over_c", json_number<json>(ratio(m.chord_modulus_pa, compression->chord_modulus))}};
+                    {"peak_stress_mpa", num(compression->peak_stress * kMpa)},
+                    {"chord_modulus_mpa", num(compression->chord_modulus * kMpa)},
+                    {"strength_ratio_c_over_t", num(strength_ratio)},
+                    {"modulus_ratio_t_over_c", num(ratio(m.chord_modulus_pa, compression->chord_modulus))}};
     }
     json j = {
         {"config", c.file.string()},
         {"test", "direct tension"},
         {"sign_convention", "tension positive: stress, strain at peak, moduli; lateral strain expansion positive"},
-        {"tensile_strength_mpa", json_number<json>(m.peak_stress_pa * kMpa)},
-        {"strain_at_peak", json_number<json>(m.strain_at_peak)},
-        {"strain_at_peak_platen", json_number<json>(r.cube.strain_at_peak_platen)},
-        {"tensile_modulus_mpa", json_number<json>(m.chord_modulus_pa * kMpa)},
-        {"tangent_modulus_mpa", json_number<json>(m.tangent_modulus_pa * kMpa)},
-        {"poisson_ratio", json_number<json>(m.poisson_ratio)},
-        {"strength_ratio_c_over_t", json_number<json>(strength_ratio)},
+        {"tensile_strength_mpa", num(m.peak_stress_pa * kMpa)},
+        {"strain_at_peak", num(m.strain_at_peak)},
+        {"strain_at_peak_platen", num(r.cube.strain_at_peak_platen)},
+        {"tensile_modulus_mpa", num(m.chord_modulus_pa * kMpa)},
+        {"tangent_modulus_mpa", num(m.tangent_modulus_pa * kMpa)},
+        {"poisson_ratio", num(m.poisson_ratio)},
+        {"strength_ratio_c_over_t", num(strength_ratio)},
         {"compression", compared},
         {"reduction", reduction},
         {"grips", {{"depth_fraction", spec.grip_depth_fraction},
@@ -97,8 +98,8 @@ std::string tension_macro_json(const TensionTestResult& r, const CubeConfig& c, 
                    {"reach_mm", r.grip_reach * kMm},
                    {"grains_bottom", r.grip_grains_bottom},
                    {"grains_top", r.grip_grains_top},
-                   {"max_slip_m", json_number<json>(r.grip_slip)},
-                   {"max_spin_rad_s", json_number<json>(r.grip_spin)}}},
+                   {"max_slip_m", num(r.grip_slip)},
+                   {"max_spin_rad_s", num(r.grip_spin)}}},
         {"run", base["run"]},
         {"broken_bonds", base["broken_bonds"]},
         {"warnings", base["warnings"]},

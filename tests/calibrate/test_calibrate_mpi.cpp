@@ -1,6 +1,7 @@
 // The MPI executor end to end: mpirun --allow-run-as-root --oversubscribe -np 3 on this
 // machine (rank 0 coordinates, 2 worker ranks). The same answer as the thread executor,
-// bitwise (analytic stand-in and a tiny DEM problem); a worker that exits mid-run ends the
+// bitwise (analytic stand-in and a tiny DEM problem), for gradem calibrate and gradem study
+// (a resolution study: one model per cube edge on every worker); a worker that exits mid-run ends the
 // job without a hang and the rerun resumes from the ledger; a job killed as a whole resumes
 // too; a worker that stops answering is given up after timeout + grace; bad setups (one
 // rank, a mismatched build, a rank without the packing cache, a bad config) end with one
@@ -268,36 +269,65 @@ nlohmann::json without_wall_times(nlohmann::json j) {
     return j;
 }
 
+/// A study of a calibration of `problem` (run first into dir/cal), run with threads (into
+/// dir/threads) and under mpirun -np 3 (dir/mpi): both study.json files and ledgers.
+struct StudyBothWays {
+    nlohmann::json threads, mpi;
+    std::map<std::string, Row> threads_ledger, mpi_ledger;
+    std::string mpi_output;
+};
+
+StudyBothWays study_both_ways(const fs::path& dir, const fs::path& problem, const std::string& study_keys) {
+    const Finished calibration = run({GRADEM_BIN, "calibrate", problem.string(), "--out", "cal"}, dir, 300);
+    INFO(calibration.output);
+    REQUIRE(calibration.exit_code == 0);
+    test::write_text(dir / "study.toml", "[study]\ncalibration = \"cal/summary.json\"\n" + study_keys + "[output]\ndir = \"study\"\n");
+    const Finished threads = run({GRADEM_BIN, "study", "study.toml", "--out", "threads"}, dir, 300);
+    INFO(threads.output);
+    REQUIRE(threads.exit_code == 0);
+    const Finished ranks = run(mpirun(3, {GRADEM_BIN, "study", "study.toml", "--out", "mpi"}), dir, 300);
+    INFO(ranks.output);
+    REQUIRE(ranks.exit_code == 0);
+    return {read_json(dir / "threads" / "study.json"), read_json(dir / "mpi" / "study.json"),
+            ledger_rows(dir / "threads" / "ledger.sqlite"), ledger_rows(dir / "mpi" / "ledger.sqlite"), ranks.output};
+}
+
 }  // namespace
 
 TEST_CASE("mpirun -np 3 gradem study: the thread run's study bitwise, its cube tests on the worker ranks", "[calibrate][mpi]") {
     TempDir dir("study-mpi");
-    const fs::path cfg = analytic_problem(dir.path, 40);
-    const Finished calibration = run({GRADEM_BIN, "calibrate", cfg.string(), "--out", "cal"}, dir.path);
-    INFO(calibration.output);
-    REQUIRE(calibration.exit_code == 0);
     // Two cube edges: two case models, both on every worker rank.
-    test::write_text(dir.path / "resolution.toml", "[study]\nkind = \"resolution\"\ncalibration = \"cal/summary.json\"\n"
-                                                   "edges_mm = [2.5, 3.0]\nseeds = [1, 2, 3]\n[output]\ndir = \"study\"\n");
-    const Finished threads = run({GRADEM_BIN, "study", "resolution.toml", "--out", "threads"}, dir.path);
-    INFO(threads.output);
-    REQUIRE(threads.exit_code == 0);
-    const Finished ranks = run(mpirun(3, {GRADEM_BIN, "study", "resolution.toml", "--out", "mpi"}), dir.path);
-    INFO(ranks.output);
-    REQUIRE(ranks.exit_code == 0);
-    CHECK_THAT(ranks.output, Contains("MPI: 2 worker ranks on 1 host"));
-    const auto a = read_json(dir.path / "threads" / "study.json"), b = read_json(dir.path / "mpi" / "study.json");
-    CHECK(a["runs"] == b["runs"]);
-    CHECK(a["verdict"] == b["verdict"]);
-    CHECK(without_wall_times(a["data"]) == without_wall_times(b["data"]));    // bitwise: JSON doubles round-trip
-    CHECK(without_wall_times(a["cases"]) == without_wall_times(b["cases"]));  // every run's outputs
-    const auto ta = ledger_rows(dir.path / "threads" / "ledger.sqlite"), tb = ledger_rows(dir.path / "mpi" / "ledger.sqlite");
-    REQUIRE(ta.size() == 6);  // 2 sands x 3 seeds; the stand-in ignores the edge, so case 2 is served from the ledger
-    check_same_runs(ta, tb);
+    const StudyBothWays r = study_both_ways(dir.path, analytic_problem(dir.path, 40),
+                                            "kind = \"resolution\"\nedges_mm = [2.5, 3.0]\nseeds = [1, 2, 3]\n");
+    CHECK_THAT(r.mpi_output, Contains("MPI: 2 worker ranks on 1 host"));
+    CHECK(r.threads["runs"] == r.mpi["runs"]);
+    CHECK(r.threads["verdict"] == r.mpi["verdict"]);
+    CHECK(without_wall_times(r.threads["data"]) == without_wall_times(r.mpi["data"]));    // bitwise: JSON doubles round-trip
+    CHECK(without_wall_times(r.threads["cases"]) == without_wall_times(r.mpi["cases"]));  // every run's outputs
+    REQUIRE(r.threads_ledger.size() == 6);  // 2 sands x 3 seeds; the stand-in ignores the edge, so case 2 is served from the ledger
+    check_same_runs(r.threads_ledger, r.mpi_ledger);
     std::map<std::int64_t, int> per_rank;
-    for (const auto& [key, r] : tb) ++per_rank[r.rank];
+    for (const auto& [key, row] : r.mpi_ledger) ++per_rank[row.rank];
     CHECK(per_rank[0] == 0);
     CHECK(per_rank[1] + per_rank[2] == 6);
+}
+
+TEST_CASE("mpirun -np 3 gradem study: a tiny DEM resolution study, bitwise the thread run, each edge's model on the workers",
+          "[calibrate][mpi]") {
+    TempDir dir("study-mpi-dem");
+    // Two edges: two DEM models (other packings, other fingerprints), so the workers run
+    // requests of both cases (sand 0 of case 2 is StudyModels sand 1).
+    const StudyBothWays r = study_both_ways(dir.path, dem_problem(dir.path),
+                                            "kind = \"resolution\"\nedges_mm = [1.6, 1.8]\nseeds = [1, 2]\n[run]\nworkers = 2\n");
+    CHECK_THAT(r.mpi_output, Contains("worker ranks loaded the packings"));
+    CHECK(without_wall_times(r.threads["data"]) == without_wall_times(r.mpi["data"]));
+    CHECK(without_wall_times(r.threads["cases"]) == without_wall_times(r.mpi["cases"]));
+    REQUIRE(r.threads_ledger.size() == 4);  // 2 edges x 2 seeds, one sand: every run is a DEM run of its own
+    check_same_runs(r.threads_ledger, r.mpi_ledger);
+    for (const auto& [key, row] : r.mpi_ledger) {
+        CHECK(row.status == "ok");
+        CHECK((row.rank == 1 || row.rank == 2));
+    }
 }
 
 namespace {

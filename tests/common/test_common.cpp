@@ -141,3 +141,15 @@ TEST_CASE("FNV-1a 64: the published test vectors; text keys keep the ledger's of
     CHECK(common::fnv1a_hex("gradem") == "9d01929bfbf5d0d9");
     CHECK(common::fnv1a_hex("gradem") != common::fnv1a_hex("gradeM"));
 }
+
+TEST_CASE("number_or_nan: a number read back, NaN for absent, null or text", "[common]") {
+    const nlohmann::json j = {{"a", 1.5}, {"n", 3}, {"missing", nullptr}, {"text", "1.0"}};
+    CHECK(common::number_or_nan(j, "a") == 1.5);
+    CHECK(common::number_or_nan(j, "n") == 3.0);
+    CHECK(std::isnan(common::number_or_nan(j, "missing")));
+    CHECK(std::isnan(common::number_or_nan(j, "text")));
+    CHECK(std::isnan(common::number_or_nan(j, "absent")));
+    // Written and read back: NaN survives the trip as null.
+    const nlohmann::json written = {{"x", common::json_number(std::nan(""))}};
+    CHECK(std::isnan(common::number_or_nan(nlohmann::json::parse(written.dump()), "x")));
+}

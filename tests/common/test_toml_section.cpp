@@ -1,6 +1,7 @@
 // common/toml_section: typed reads of one TOML table with unit conversion and defaults, and
 // every kind of bad input (parse error, unknown table or key, wrong type, integer out of
 // range) rejected naming the file, line and key.
+#include "../input_files.hpp"
 #include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
 
@@ -19,33 +20,25 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-fs::path write(const fs::path& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-}
+using gradem::test::write_file;
 
-/// `read` on a parsed `text` must throw an InputError at `line` containing every part.
+/// `read` on the parsed `text` must throw an InputError at `line` containing every part.
 template <typename Read>
 void require_rejected(const fs::path& file, const std::string& text, Read read, int line, std::initializer_list<std::string> parts) {
-    write(file, text);
-    try {
-        Context ctx;
-        const toml::table root = parse_toml_file(file, ctx);
-        read(ctx, root);
-        FAIL("accepted: " << text);
-    } catch (const InputError& e) {
-        INFO(e.what());
-        CHECK(e.line() == line);
-        CHECK_THAT(e.what(), Contains(file.string()));
-        for (const auto& p : parts) CHECK_THAT(e.what(), Contains(p));
-    }
+    write_file(file, text);
+    gradem::test::require_input_error(
+        [&] {
+            Context ctx;
+            read(ctx, parse_toml_file(file, ctx));
+        },
+        file, line, parts);
 }
 
 }  // namespace
 
 TEST_CASE("Section: values converted to SI, defaults kept and recorded, paths relative to the file", "[common]") {
     gradem::test::TempDir dir("common-toml");
-    const fs::path file = write(dir.path / "c.toml", "[a]\nlength_mm = 2.5\ncount = 3\nflag = true\nname = \"x\"\nfile = \"d/e.csv\"\n");
+    const fs::path file = write_file(dir.path / "c.toml", "[a]\nlength_mm = 2.5\ncount = 3\nflag = true\nname = \"x\"\nfile = \"d/e.csv\"\n");
     Context ctx;
     const toml::table root = parse_toml_file(file, ctx);
     Section a(ctx, root, "a");
@@ -100,8 +93,8 @@ TEST_CASE("parse_toml_file reads a UTF-16 file like a UTF-8 one", "[common]") {
     for (unsigned char c : std::string("[a]\nname = \"caf")) utf16 += std::string{static_cast<char>(c), '\0'};
     utf16 += std::string("\xE9\x00\"\x00\n\x00", 6);
     Context ctx8, ctx16;
-    const toml::table a = parse_toml_file(write(dir.path / "u8.toml", text), ctx8);
-    const toml::table b = parse_toml_file(write(dir.path / "u16.toml", utf16), ctx16);
+    const toml::table a = parse_toml_file(write_file(dir.path / "u8.toml", text), ctx8);
+    const toml::table b = parse_toml_file(write_file(dir.path / "u16.toml", utf16), ctx16);
     CHECK(a["a"]["name"].value<std::string>() == b["a"]["name"].value<std::string>());
     CHECK(b["a"]["name"].value<std::string>() == "caf\xC3\xA9");
 }

@@ -2,6 +2,7 @@
 // relative paths, and each kind of bad input (unknown table or key, wrong type, out-of-range
 // value) rejected with the file, line, key, value and rule. Also the shipped configs and the
 // result writers (CSV columns, crack strain interpolation, null for NaN in macro.json).
+#include "../input_files.hpp"
 #include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
 
@@ -28,12 +29,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 using test::TempDir;
-
-fs::path write(const fs::path& path, const std::string& text) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path) << text;
-    return path;
-}
+using test::write_file;
 
 const std::string kSieve =
     "sieve,opening_mm,percent_passing\n#4,4.75,100\n#16,1.18,98\n#50,0.3,70\n#100,0.149,25\n#200,0.075,0\n";
@@ -45,23 +41,15 @@ std::string config_with(const std::string& table, const std::string& line3) {
 
 /// load_cube_config must throw an InputError at `line` whose message contains every `parts`.
 void require_rejected(const fs::path& file, int line, std::initializer_list<std::string> parts) {
-    try {
-        (void)load_cube_config(file);
-        FAIL("accepted " << file);
-    } catch (const common::InputError& e) {
-        INFO(e.what());
-        CHECK(e.line() == line);
-        CHECK_THAT(e.what(), Contains(file.string()));
-        for (const auto& p : parts) CHECK_THAT(e.what(), Contains(p));
-    }
+    test::require_input_error([&] { (void)load_cube_config(file); }, file, line, parts);
 }
 
 }  // namespace
 
 TEST_CASE("a config converts display units to SI and resolves paths from its folder", "[cube_config]") {
     const TempDir dir("config-good");
-    write(dir.path / "sand.csv", kSieve);
-    const fs::path file = write(dir.path / "runs" / "c.toml", R"(
+    write_file(dir.path / "sand.csv", kSieve);
+    const fs::path file = write_file(dir.path / "runs" / "c.toml", R"(
 [specimen]
 sieve_csv = "../sand.csv"
 [size_rule]
@@ -131,8 +119,8 @@ vtk_every = 5
 
 TEST_CASE("a minimal config takes the struct defaults", "[cube_config]") {
     const TempDir dir("config-minimal");
-    write(dir.path / "sand.csv", kSieve);
-    const CubeConfig c = load_cube_config(write(dir.path / "m.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nstrain_rate_per_s = \"auto\"\n"));
+    write_file(dir.path / "sand.csv", kSieve);
+    const CubeConfig c = load_cube_config(write_file(dir.path / "m.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nstrain_rate_per_s = \"auto\"\n"));
     CHECK(c.auto_strain_rate);
     CHECK(c.material.contact.effective_modulus == ContactParams{}.effective_modulus);
     CHECK(c.material.bond.tensile_strength_mean == BondParams{}.tensile_strength_mean);
@@ -146,54 +134,54 @@ TEST_CASE("a minimal config takes the struct defaults", "[cube_config]") {
 TEST_CASE("bad configs are rejected with file, line, key, value and rule", "[cube_config]") {
     const TempDir dir("config-bad");
     const fs::path file = dir.path / "bad.toml";
-    write(dir.path / "sand.csv", kSieve);
+    write_file(dir.path / "sand.csv", kSieve);
 
     SECTION("unknown key") {
-        write(file, config_with("material", "youngs = 3"));
+        write_file(file, config_with("material", "youngs = 3"));
         require_rejected(file, 4, {"unknown key 'material.youngs'", "known:", "effective_modulus_gpa"});
     }
     SECTION("unknown table") {
-        write(file, config_with("materials", "friction = 3"));
+        write_file(file, config_with("materials", "friction = 3"));
         require_rejected(file, 3, {"unknown table '[materials]'", "known tables"});
     }
     SECTION("wrong type") {
-        write(file, config_with("material", "friction = \"high\""));
+        write_file(file, config_with("material", "friction = \"high\""));
         require_rejected(file, 4, {"key 'material.friction' = \"high\"", "expected a number"});
-        write(file, config_with("genesis", "max_steps = 1.5"));
+        write_file(file, config_with("genesis", "max_steps = 1.5"));
         require_rejected(file, 4, {"key 'genesis.max_steps'", "expected an integer"});
-        write(file, config_with("test", "strain_rate_per_s = \"fast\""));
+        write_file(file, config_with("test", "strain_rate_per_s = \"fast\""));
         require_rejected(file, 4, {"key 'test.strain_rate_per_s' = \"fast\"", "\"auto\""});
-        write(file, config_with("output", "vtk = 1"));
+        write_file(file, config_with("output", "vtk = 1"));
         require_rejected(file, 4, {"key 'output.vtk' = 1", "true or false"});
     }
     SECTION("out of range, rule from the struct's validator") {
-        write(file, config_with("material", "radius_multiplier = 1.5"));
+        write_file(file, config_with("material", "radius_multiplier = 1.5"));
         require_rejected(file, 4, {"key 'material.radius_multiplier' = 1.5 violates in (0, 1]"});
-        write(file, config_with("genesis", "edge_mm = -2"));
+        write_file(file, config_with("genesis", "edge_mm = -2"));
         require_rejected(file, 4, {"key 'genesis.edge_mm' = -2 violates > 0", "genesis.edge = -0.002"});
-        write(file, config_with("material", "tensile_strength_cv = -0.1"));
+        write_file(file, config_with("material", "tensile_strength_cv = -0.1"));
         require_rejected(file, 4, {"key 'material.tensile_strength_cv' = -0.1 violates >= 0"});
-        write(file, config_with("material", "bond_modulus_gpa = 0"));
+        write_file(file, config_with("material", "bond_modulus_gpa = 0"));
         require_rejected(file, 4, {"key 'material.bond_modulus_gpa' = 0 violates > 0"});
-        write(file, config_with("material", "damping = 1.0"));
+        write_file(file, config_with("material", "damping = 1.0"));
         require_rejected(file, 4, {"key 'material.damping' = 1.0 violates in [0, 1)"});
-        write(file, config_with("test", "stop_fraction = 2"));
+        write_file(file, config_with("test", "stop_fraction = 2"));
         require_rejected(file, 4, {"key 'test.stop_fraction' = 2 violates in (0, 1)"});
-        write(file, config_with("test", "slab_fraction = 0.7"));
+        write_file(file, config_with("test", "slab_fraction = 0.7"));
         require_rejected(file, 4, {"key 'test.slab_fraction' = 0.7 violates in (0, 0.5)"});
-        write(file, config_with("genesis", "seed = -1"));
+        write_file(file, config_with("genesis", "seed = -1"));
         require_rejected(file, 4, {"key 'genesis.seed' = -1 violates in [0,"});
-        write(file, config_with("output", "vtk_every = -3"));
+        write_file(file, config_with("output", "vtk_every = -3"));
         require_rejected(file, 4, {"key 'output.vtk_every' = -3 violates in [0,"});
     }
     SECTION("specimen source") {
-        write(file, "[specimen]\nsand = \"x\"\n");
+        write_file(file, "[specimen]\nsand = \"x\"\n");
         require_rejected(file, 0, {"either dataset"});
-        write(file, "[specimen]\ndataset = \"d\"\n");
+        write_file(file, "[specimen]\ndataset = \"d\"\n");
         require_rejected(file, 2, {"'specimen.sand' is required"});
     }
     SECTION("TOML syntax") {
-        write(file, "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nmax_strain = = 3\n");
+        write_file(file, "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nmax_strain = = 3\n");
         require_rejected(file, 4, {});
     }
 }
@@ -254,9 +242,9 @@ TEST_CASE("result writers: curve and crack CSVs, macro.json with null for NaN", 
 
 TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macro.json shows them", "[cube_config]") {
     const TempDir dir("config-models");
-    write(dir.path / "sand.csv", kSieve);
+    write_file(dir.path / "sand.csv", kSieve);
     SECTION("soft bond") {
-        const CubeConfig c = load_cube_config(write(dir.path / "s.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
+        const CubeConfig c = load_cube_config(write_file(dir.path / "s.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
                                                                        "model = \"soft_bond\"\nsoftening_factor = 0.4\ncut_fraction = 0.1\n"));
         CHECK(c.material.bond.model == BondModel::soft_bond);
         CHECK(c.material.bond.soft.softening_factor == 0.4);
@@ -269,7 +257,7 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
         CHECK_FALSE(j["display"].contains("radial_elements"));
     }
     SECTION("flat joint") {
-        const CubeConfig c = load_cube_config(write(dir.path / "f.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
+        const CubeConfig c = load_cube_config(write_file(dir.path / "f.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
                                                                        "model = \"flat_joint\"\nradial_elements = 2\n"
                                                                        "angular_elements = 3\nresidual_friction = 0.6\n"
                                                                        "bond_replaces_contact = false\n"));
@@ -283,7 +271,7 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
         CHECK_FALSE(j["display"].contains("softening_factor"));
     }
     SECTION("parallel bond by default, and without the other models' keys in macro.json") {
-        const CubeConfig c = load_cube_config(write(dir.path / "p.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n"));
+        const CubeConfig c = load_cube_config(write_file(dir.path / "p.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n"));
         CHECK(c.material.bond.model == BondModel::parallel_bond);
         const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
         CHECK(j["display"]["model"] == "parallel_bond");
@@ -295,20 +283,20 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
 TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[cube_config]") {
     const TempDir dir("config-bad-models");
     const fs::path file = dir.path / "bad.toml";
-    write(dir.path / "sand.csv", kSieve);
+    write_file(dir.path / "sand.csv", kSieve);
     SECTION("unknown model: the known ones are listed") {
-        write(file, config_with("material", "model = \"damage\""));
+        write_file(file, config_with("material", "model = \"damage\""));
         require_rejected(file, 4, {"key 'material.model' = \"damage\"", "unknown bond model", "parallel_bond, soft_bond, flat_joint"});
-        write(file, config_with("material", "model = 3"));
+        write_file(file, config_with("material", "model = 3"));
         require_rejected(file, 4, {"key 'material.model' = 3", "expected a string"});
     }
     SECTION("a parameter of another model") {
-        write(file, config_with("material", "model = \"flat_joint\"\nsoftening_factor = 0.3"));
+        write_file(file, config_with("material", "model = \"flat_joint\"\nsoftening_factor = 0.3"));
         require_rejected(file, 5, {"key 'material.softening_factor' belongs to bond model soft_bond", "material.model = \"flat_joint\" (line 4)"});
-        write(file, config_with("material", "radial_elements = 2"));
+        write_file(file, config_with("material", "radial_elements = 2"));
         require_rejected(file, 4, {"key 'material.radial_elements' belongs to bond model flat_joint", "\"parallel_bond\" (the default)",
                                    "set model = \"flat_joint\""});
-        write(file, config_with("material", "model = \"soft_bond\"\nresidual_friction = 0.5"));
+        write_file(file, config_with("material", "model = \"soft_bond\"\nresidual_friction = 0.5"));
         require_rejected(file, 5, {"'material.residual_friction' belongs to bond model flat_joint"});
         write(file, config_with("material", "bond_replaces_contact = true"));
         require_rejected(file, 4, {"'material.bond_replaces_contact' belongs to bond model soft_bond, flat_joint"});
@@ -321,7 +309,7 @@ TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[
                  {"softening_factor = -0.5", "key 'material.softening_factor' = -0.5 violates > 0"},
                  {"cut_fraction = 1.0", "key 'material.cut_fraction' = 1.0 violates in [0, 1)"},
                  {"cut_fraction = -0.1", "key 'material.cut_fraction' = -0.1 violates in [0, 1)"}}) {
-            write(file, config_with("material", "model = \"soft_bond\"\n" + line));
+            write_file(file, config_with("material", "model = \"soft_bond\"\n" + line));
             require_rejected(file, 5, {expected});
         }
         for (const auto& [line, expected] : std::vector<std::pair<std::string, std::string>>{
@@ -330,7 +318,7 @@ TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[
                  {"angular_elements = 10000000000", "key 'material.angular_elements' = 10000000000 violates in [1, 64]"},
                  {"radial_elements = 1.5", "key 'material.radial_elements' = 1.5: expected an integer"},
                  {"residual_friction = -0.2", "key 'material.residual_friction' = -0.2 violates >= 0"}}) {
-            write(file, config_with("material", "model = \"flat_joint\"\n" + line));
+            write_file(file, config_with("material", "model = \"flat_joint\"\n" + line));
             require_rejected(file, 5, {expected});
         }
     }

@@ -9,35 +9,15 @@
 #include "core/parallel.hpp"
 #include "experiments/affine_estimate.hpp"
 #include "experiments/cube_test.hpp"
-#include "study_curves.hpp"
+#include "../with_threads.hpp"
+#include "small_specimen.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;
+using gradem::test::small_material;
+using gradem::test::small_packing;
 
 namespace {
-
-const Packing& small_packing() {
-    static const Packing packing = [] {
-        SpecimenSpec spec;
-        spec.size_rule.min_diameter = 0.3e-3;
-        spec.size_rule.max_diameter = 1.18e-3;
-        spec.genesis.edge = 3.6e-3;
-        spec.genesis.max_steps = 60000;
-        spec.seed = 5;
-        return generate_packing(test::van_buren_curve(), spec);
-    }();
-    return packing;
-}
-
-MaterialParams material(double modulus_scale = 1.0, double strength_scale = 1.0) {
-    MaterialParams m;
-    m.contact.effective_modulus = m.bond.effective_modulus = 10.0e9 * modulus_scale;
-    m.bond.tensile_strength_mean = 5.0e6 * strength_scale;
-    m.bond.tensile_strength_std = 1.0e6 * strength_scale;
-    m.bond.cohesion_mean = 10.0e6 * strength_scale;
-    m.bond.cohesion_std = 2.0e6 * strength_scale;
-    return m;
-}
 
 CubeTestSpec test_spec() {
     CubeTestSpec t;
@@ -56,7 +36,7 @@ Macro macro_of(const CubeTestResult& r) {
 }
 
 const CubeTestResult& base_run() {
-    static const CubeTestResult r = run_cube_test(small_packing(), material(), test_spec());
+    static const CubeTestResult r = run_cube_test(small_packing(), small_material(), test_spec());
     return r;
 }
 
@@ -72,7 +52,7 @@ TEST_CASE("cube test: platens agree before the peak, modulus within the affine b
     CHECK(r.test.stop_reason == "post-peak");
     CHECK(r.cracks.size() > 100);
     CHECK(r.settle_ratio < test_spec().settle_ratio);
-    const AffineModuli affine = affine_moduli(small_packing(), material());
+    const AffineModuli affine = affine_moduli(small_packing(), small_material());
     INFO("affine (Voigt) Young's modulus " << affine.youngs * 1e-9 << " GPa");
     CHECK(m.modulus < affine.youngs);
     CHECK(m.modulus > 0.5 * affine.youngs);
@@ -83,7 +63,7 @@ TEST_CASE("cube test: platens agree before the peak, modulus within the affine b
 TEST_CASE("homogeneity: moduli x 2 -> modulus x 2, same peak, strain at peak / 2",
           "[experiments][cube][homogeneity]") {
     const Macro base = macro_of(base_run());
-    const Macro stiff = macro_of(run_cube_test(small_packing(), material(2.0, 1.0), test_spec()));
+    const Macro stiff = macro_of(run_cube_test(small_packing(), small_material(2.0, 1.0), test_spec()));
     CHECK(stiff.modulus / base.modulus == Approx(2.0).epsilon(0.05));
     CHECK(stiff.peak / base.peak == Approx(1.0).epsilon(0.05));
     CHECK(stiff.strain / base.strain == Approx(0.5).epsilon(0.07));
@@ -92,7 +72,7 @@ TEST_CASE("homogeneity: moduli x 2 -> modulus x 2, same peak, strain at peak / 2
 TEST_CASE("homogeneity: strengths x 2 -> peak x 2, strain at peak x 2, same modulus",
           "[experiments][cube][homogeneity]") {
     const Macro base = macro_of(base_run());
-    const Macro strong = macro_of(run_cube_test(small_packing(), material(1.0, 2.0), test_spec()));
+    const Macro strong = macro_of(run_cube_test(small_packing(), small_material(1.0, 2.0), test_spec()));
     CHECK(strong.peak / base.peak == Approx(2.0).epsilon(0.05));
     CHECK(strong.strain / base.strain == Approx(2.0).epsilon(0.07));
     CHECK(strong.modulus / base.modulus == Approx(1.0).epsilon(0.03));
@@ -102,16 +82,9 @@ TEST_CASE("same packing and seed give bitwise-identical curves with 1 and 2 thre
           "[experiments][cube][determinism]") {
     CubeTestSpec t = test_spec();
     t.loading.max_strain = 0.0008;  // through the first breaks, well before the peak
-    auto curve_with = [&](int threads) {
-#ifdef _OPENMP
-        omp_set_num_threads(threads);
-#else
-        (void)threads;
-#endif
-        return run_cube_test(small_packing(), material(), t);
-    };
-    const CubeTestResult one = curve_with(1);
-    const CubeTestResult two = curve_with(2);
+    auto run = [&] { return run_cube_test(small_packing(), small_material(), t); };
+    const CubeTestResult one = test::with_threads(1, run);
+    const CubeTestResult two = test::with_threads(2, run);
     REQUIRE(one.test.curve.size() == two.test.curve.size());
     REQUIRE_FALSE(one.cracks.empty());
     CHECK(one.cracks.size() == two.cracks.size());
@@ -121,7 +94,4 @@ TEST_CASE("same packing and seed give bitwise-identical curves with 1 and 2 thre
         CHECK(std::memcmp(&a.gauge_strain, &b.gauge_strain, sizeof(double)) == 0);
         CHECK(std::memcmp(&a.lateral_strain, &b.lateral_strain, sizeof(double)) == 0);
     }
-#ifdef _OPENMP
-    omp_set_num_threads(thread_count());
-#endif
 }

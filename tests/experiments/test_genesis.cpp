@@ -14,10 +14,13 @@
 #include "experiments/genesis.hpp"
 #include "experiments/morton_order.hpp"
 #include "experiments/packing_cache.hpp"
-#include "study_curves.hpp"
+#include "../with_threads.hpp"
+#include "small_specimen.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;
+using gradem::test::small_packing;
+using gradem::test::small_spec;
 
 TEST_CASE("grains sampled by mass reproduce the sieve curve", "[experiments][genesis]") {
     const lab::GradationCurve curve = test::pre_blended_curve();
@@ -60,21 +63,6 @@ TEST_CASE("size rules that remove everything are refused", "[experiments][genesi
 }
 
 namespace {
-
-SpecimenSpec small_spec() {
-    SpecimenSpec spec;
-    spec.size_rule.min_diameter = 0.3e-3;  // small and fast: ~500 grains
-    spec.size_rule.max_diameter = 1.18e-3;
-    spec.genesis.edge = 3.6e-3;
-    spec.genesis.max_steps = 60000;
-    spec.seed = 5;
-    return spec;
-}
-
-const Packing& small_packing() {
-    static const Packing k = generate_packing(test::van_buren_curve(), small_spec());
-    return k;
-}
 
 struct ContactStats {
     double mean_overlap = 0.0, max_overlap = 0.0;  // overlap / smallest diameter of the packing
@@ -181,18 +169,9 @@ TEST_CASE("genesis is bitwise identical for any thread count", "[experiments][ge
     spec.genesis.edge = 3.6e-3;
     spec.genesis.target_solid_fraction = 0.5;  // walls loosen a box only ~6 grains wide
     spec.seed = 11;
-    const int threads = thread_count();
-#ifdef _OPENMP
-    omp_set_num_threads(1);
-#endif
-    const Packing one = generate_packing(test::van_buren_curve(), spec);
-#ifdef _OPENMP
-    omp_set_num_threads(3);
-#endif
-    const Packing three = generate_packing(test::van_buren_curve(), spec);
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#endif
+    auto generate = [&] { return generate_packing(test::van_buren_curve(), spec); };
+    const Packing one = test::with_threads(1, generate);
+    const Packing three = test::with_threads(3, generate);
     REQUIRE(one.position.size() == three.position.size());
     CHECK(std::memcmp(one.position.data(), three.position.data(), one.position.size() * sizeof(Vec3)) == 0);
     CHECK(std::memcmp(one.radius.data(), three.radius.data(), one.radius.size() * sizeof(double)) == 0);
@@ -208,18 +187,9 @@ TEST_CASE("genesis of a packing large enough for parallel minimisation is bitwis
     spec.size_rule.max_diameter = 1.18e-3;
     spec.genesis.edge = 9.9e-3;
     spec.seed = 3;
-    const int threads = thread_count();
-#ifdef _OPENMP
-    omp_set_num_threads(1);
-#endif
-    const Packing one = generate_packing(test::van_buren_curve(), spec);
-#ifdef _OPENMP
-    omp_set_num_threads(2);
-#endif
-    const Packing two = generate_packing(test::van_buren_curve(), spec);
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#endif
+    auto generate = [&] { return generate_packing(test::van_buren_curve(), spec); };
+    const Packing one = test::with_threads(1, generate);
+    const Packing two = test::with_threads(2, generate);
     INFO(describe(one, spec));
     REQUIRE(one.position.size() > 16384);
     REQUIRE(one.position.size() == two.position.size());

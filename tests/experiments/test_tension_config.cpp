@@ -2,6 +2,7 @@
 // unknown keys and out-of-range values rejected with file, line, key and rule), the compression
 // reference check (same material and specimen, a compression macro.json only) and macro.json
 // (tension headline keys, σc/σt, null for NaN).
+#include "../input_files.hpp"
 #include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
 
@@ -25,26 +26,13 @@ using Catch::Matchers::Contains;
 namespace {
 
 using test::TempDir;
-
-fs::path write(const fs::path& path, const std::string& text) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path) << text;
-    return path;
-}
+using test::write_file;
 
 const std::string kSieve = "sieve,opening_mm,percent_passing\n#16,1.18,100\n#50,0.3,50\n#100,0.149,0\n";
 const std::string kHead = "[specimen]\nsieve_csv = \"sand.csv\"\n[test]\nmax_strain = 0.02\n";
 
 void require_rejected(const fs::path& file, int line, std::initializer_list<std::string> parts) {
-    try {
-        (void)load_tension_config(load_cube_config(file));
-        FAIL("accepted " << file);
-    } catch (const common::InputError& e) {
-        INFO(e.what());
-        CHECK(e.line() == line);
-        CHECK_THAT(e.what(), Contains(file.string()));
-        for (const auto& p : parts) CHECK_THAT(e.what(), Contains(p));
-    }
+    test::require_input_error([&] { (void)load_tension_config(load_cube_config(file)); }, file, line, parts);
 }
 
 // A tension result with a three-point curve, σt = 5 MPa.
@@ -81,14 +69,14 @@ Packing tiny_packing() {
 
 TEST_CASE("[tension] is optional, read with the cube config, and takes the test's loading", "[tension_config]") {
     const TempDir dir("tension-config");
-    write(dir.path / "sand.csv", kSieve);
-    const CubeConfig plain = load_cube_config(write(dir.path / "plain.toml", kHead));
+    write_file(dir.path / "sand.csv", kSieve);
+    const CubeConfig plain = load_cube_config(write_file(dir.path / "plain.toml", kHead));
     const TensionConfig defaults = load_tension_config(plain);
     CHECK(defaults.spec.grip_depth_fraction == TensionTestSpec{}.grip_depth_fraction);
     CHECK(defaults.auto_peak_strain == TensionConfig{}.auto_peak_strain);
     CHECK(defaults.spec.test.loading.max_strain == 0.02);
 
-    const CubeConfig with = load_cube_config(write(dir.path / "with.toml", kHead +
+    const CubeConfig with = load_cube_config(write_file(dir.path / "with.toml", kHead +
                                                    "[tension]\ngrip_depth_fraction = 0.05\nauto_peak_strain = 5e-4\n"));
     const TensionConfig t = load_tension_config(with);
     CHECK(t.spec.grip_depth_fraction == 0.05);
@@ -110,17 +98,17 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
 
 TEST_CASE("bad [tension] tables are rejected with file, line, key and rule", "[tension_config]") {
     const TempDir dir("tension-config-bad");
-    write(dir.path / "sand.csv", kSieve);
+    write_file(dir.path / "sand.csv", kSieve);
     const fs::path file = dir.path / "bad.toml";
-    write(file, kHead + "[tension]\ngrip_depth = 0.1\n");
+    write_file(file, kHead + "[tension]\ngrip_depth = 0.1\n");
     require_rejected(file, 6, {"unknown key 'tension.grip_depth'", "grip_depth_fraction"});
-    write(file, kHead + "[tension]\ngrip_depth_fraction = 0.3\n");
+    write_file(file, kHead + "[tension]\ngrip_depth_fraction = 0.3\n");
     require_rejected(file, 6, {"key 'tension.grip_depth_fraction' = 0.3 violates in [0, 0.25)"});
-    write(file, kHead + "[tension]\ngrip_depth_fraction = \"deep\"\n");
+    write_file(file, kHead + "[tension]\ngrip_depth_fraction = \"deep\"\n");
     require_rejected(file, 6, {"key 'tension.grip_depth_fraction' = \"deep\"", "expected a number"});
-    write(file, kHead + "[tension]\nauto_peak_strain = 0\n");
+    write_file(file, kHead + "[tension]\nauto_peak_strain = 0\n");
     require_rejected(file, 6, {"key 'tension.auto_peak_strain' = 0", "violates in (0, 0.01)"});
-    write(file, "tension = 3\n" + kHead);
+    write_file(file, "tension = 3\n" + kHead);
     require_rejected(file, 1, {"'tension' must be a table"});
 }
 
@@ -134,7 +122,7 @@ TEST_CASE("tension macro.json: tension keys, σc/σt from a matching compression
     CubeTestResult compression;
     compression.macro.peak_stress_pa = 40e6;
     compression.macro.chord_modulus_pa = 25e9;
-    const fs::path compression_file = write(dir.path / "macro.json", macro_json(compression, c, k, 1.0));
+    const fs::path compression_file = write_file(dir.path / "macro.json", macro_json(compression, c, k, 1.0));
     const CompressionReference ref = read_compression_reference(compression_file, c, k);
     CHECK(ref.peak_stress == Approx(40e6));
     CHECK(ref.chord_modulus == Approx(25e9));
@@ -162,7 +150,7 @@ TEST_CASE("tension macro.json: tension keys, σc/σt from a matching compression
                           Contains(compression_file.string()) && Contains("another material"));
     }
     SECTION("a tension macro.json is not a compression reference") {
-        const fs::path tension_file = write(dir.path / "t.json", tension_macro_json(t, c, spec, k, 2.0));
+        const fs::path tension_file = write_file(dir.path / "t.json", tension_macro_json(t, c, spec, k, 2.0));
         CHECK_THROWS_WITH(read_compression_reference(tension_file, c, k), Contains("not the macro.json of a compression test"));
     }
     SECTION("files are written atomically into the folder") {

@@ -13,35 +13,15 @@
 #include "experiments/cube_specimen.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/tension_test.hpp"
-#include "study_curves.hpp"
+#include "../with_threads.hpp"
+#include "small_specimen.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;
+using gradem::test::small_material;
+using gradem::test::small_packing;
 
 namespace {
-
-const Packing& small_packing() {
-    static const Packing packing = [] {
-        SpecimenSpec spec;
-        spec.size_rule.min_diameter = 0.3e-3;
-        spec.size_rule.max_diameter = 1.18e-3;
-        spec.genesis.edge = 3.6e-3;
-        spec.genesis.max_steps = 60000;
-        spec.seed = 5;
-        return generate_packing(test::van_buren_curve(), spec);
-    }();
-    return packing;
-}
-
-MaterialParams material(double strength_scale = 1.0) {
-    MaterialParams m;
-    m.contact.effective_modulus = m.bond.effective_modulus = 10.0e9;
-    m.bond.tensile_strength_mean = 5.0e6 * strength_scale;
-    m.bond.tensile_strength_std = 1.0e6 * strength_scale;
-    m.bond.cohesion_mean = 10.0e6 * strength_scale;
-    m.bond.cohesion_std = 2.0e6 * strength_scale;
-    return m;
-}
 
 TensionTestSpec tension_spec() {
     TensionTestSpec t;
@@ -50,7 +30,7 @@ TensionTestSpec tension_spec() {
 }
 
 const TensionTestResult& base_tension() {
-    static const TensionTestResult r = run_tension_test(small_packing(), material(), tension_spec());
+    static const TensionTestResult r = run_tension_test(small_packing(), small_material(), tension_spec());
     return r;
 }
 
@@ -59,7 +39,7 @@ const CubeTestResult& early_compression() {
     static const CubeTestResult r = [] {
         CubeTestSpec t = tension_spec().test;
         t.loading.max_strain = 8e-4;
-        return run_cube_test(small_packing(), material(), t);
+        return run_cube_test(small_packing(), small_material(), t);
     }();
     return r;
 }
@@ -181,9 +161,9 @@ TEST_CASE("tension vs compression modulus: equal while the contacts hold, bond-d
     // Beyond, the contacts along the axis open in tension (bonds only) and stay shut in
     // compression (bond + contact): the tensile chord drops towards the bond-only affine share.
     const double e_t = chord_reduction(t.cube.test).chord_modulus_pa, e_c = chord_reduction(c.test).chord_modulus_pa;
-    MaterialParams bonds_only = material();
+    MaterialParams bonds_only = small_material();
     bonds_only.contact.effective_modulus *= 1e-6;
-    const double share = affine_moduli(small_packing(), bonds_only).youngs / affine_moduli(small_packing(), material()).youngs;
+    const double share = affine_moduli(small_packing(), bonds_only).youngs / affine_moduli(small_packing(), small_material()).youngs;
     INFO("chord moduli: tension " << e_t * 1e-9 << " GPa, compression " << e_c * 1e-9 << " GPa, ratio " << e_t / e_c
                                   << ", affine bond-only share " << share);
     CHECK(e_t < 0.85 * e_c);
@@ -191,7 +171,7 @@ TEST_CASE("tension vs compression modulus: equal while the contacts hold, bond-d
 
     // Contacts carry no tension: 100 x softer contacts hardly change the tensile modulus (the
     // affine estimate with contacts would drop by 1 - share).
-    MaterialParams soft = material();
+    MaterialParams soft = small_material();
     soft.contact.effective_modulus *= 0.01;
     TensionTestSpec early = tension_spec();
     early.test.loading.max_strain = 1.5e-4;
@@ -203,7 +183,7 @@ TEST_CASE("tension vs compression modulus: equal while the contacts hold, bond-d
 TEST_CASE("tension homogeneity: strengths x 2 -> σt x 2, strain at peak x 2, same modulus",
           "[experiments][tension][homogeneity]") {
     const TensionTestResult& base = base_tension();
-    const TensionTestResult strong = run_tension_test(small_packing(), material(2.0), tension_spec());
+    const TensionTestResult strong = run_tension_test(small_packing(), small_material(1.0, 2.0), tension_spec());
     REQUIRE(strong.cube.macro.status == lab::ReductionStatus::ok);
     const lab::CurveReduction &a = base.cube.macro, &b = strong.cube.macro;
     CHECK(b.peak_stress_pa / a.peak_stress_pa == Approx(2.0).epsilon(0.05));
@@ -214,16 +194,9 @@ TEST_CASE("tension homogeneity: strengths x 2 -> σt x 2, strain at peak x 2, sa
 TEST_CASE("tension: bitwise-identical curves with 1 and 2 threads", "[experiments][tension][determinism]") {
     TensionTestSpec t = tension_spec();
     t.test.loading.max_strain = 2.5e-4;  // through the first breaks, before the peak
-    auto curve_with = [&](int threads) {
-#ifdef _OPENMP
-        omp_set_num_threads(threads);
-#else
-        (void)threads;
-#endif
-        return run_tension_test(small_packing(), material(), t);
-    };
-    const TensionTestResult one = curve_with(1);
-    const TensionTestResult two = curve_with(2);
+    auto run = [&] { return run_tension_test(small_packing(), small_material(), t); };
+    const TensionTestResult one = test::with_threads(1, run);
+    const TensionTestResult two = test::with_threads(2, run);
     REQUIRE(one.cube.test.curve.size() == two.cube.test.curve.size());
     REQUIRE_FALSE(one.cube.cracks.empty());
     CHECK(one.cube.cracks.size() == two.cube.cracks.size());
@@ -233,7 +206,4 @@ TEST_CASE("tension: bitwise-identical curves with 1 and 2 threads", "[experiment
         CHECK(std::memcmp(&a.gauge_strain, &b.gauge_strain, sizeof(double)) == 0);
         CHECK(std::memcmp(&a.platen_strain, &b.platen_strain, sizeof(double)) == 0);
     }
-#ifdef _OPENMP
-    omp_set_num_threads(thread_count());
-#endif
 }
