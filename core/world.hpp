@@ -127,6 +127,14 @@ private:
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
     std::vector<double> bond_side_;      ///< per-bond law state, bond_side_stride_ doubles each
+    /// Per-bond disc section and stiffness (they depend only on the radii and BondParams):
+    /// computed once, not every step; stale after a change of radii or bond parameters.
+    struct BondConstants {
+        BondSection section;
+        BondStiffness stiffness;
+    };
+    std::vector<BondConstants> bond_const_;
+    bool bond_const_stale_ = true;
     std::size_t bond_side_stride_ = 0;   ///< 0 for laws without side state (parallel bond)
     std::vector<Wall> walls_;
     std::vector<WallContact> wall_contacts_;
@@ -174,6 +182,7 @@ private:
         }
     };
     BondEnergy compute_bonds(double dt);
+    void refresh_bond_constants();
     template <class Law>
     BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);

@@ -50,12 +50,27 @@ std::size_t World::install_bonds(const BondParams& params, double max_gap) {
             for (std::size_t k = 0; k < bonds_.size(); ++k)
                 decltype(law)::install(params, normals[k], bond_side_.data() + k * stride);
         });
+    bond_const_stale_ = true;
     rebuild_needed_ = true;
     forces_current_ = false;
     return bonds_.size();
 }
 
+// The same expressions the kernel evaluated every step before, so the values are bitwise equal.
+void World::refresh_bond_constants() {
+    bond_const_.resize(bonds_.size());
+    bond_const_.shrink_to_fit();
+    for (std::size_t k = 0; k < bonds_.size(); ++k) {
+        const double ra = particles_.radius[static_cast<std::size_t>(bonds_[k].i)];
+        const double rb = particles_.radius[static_cast<std::size_t>(bonds_[k].j)];
+        bond_const_[k] = {bond_section(bond_params_.radius_multiplier, ra, rb),
+                          bond_stiffness(bond_params_.effective_modulus, bond_params_.stiffness_ratio, ra, rb)};
+    }
+    bond_const_stale_ = false;
+}
+
 World::BondEnergy World::compute_bonds(double dt) {
+    if (bond_const_stale_) refresh_bond_constants();
     return visit_bond_law(bond_params_.model,
                           [&](auto law) { return compute_bonds_with<decltype(law)>(dt); });
 }
@@ -79,9 +94,9 @@ World::BondEnergy World::compute_bonds_with(double dt) {
                               particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             const PairKinematics kin = pair_kinematics(s, dt);
-            const BondSection sec = bond_section(bond_params_.radius_multiplier, s.ra, s.rb);
-            const BondStiffness stiff = bond_stiffness(bond_params_.effective_modulus,
-                                                       bond_params_.stiffness_ratio, s.ra, s.rb);
+            const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
+            const BondSection& sec = bc.section;
+            const BondStiffness& stiff = bc.stiffness;
             double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
             const BondStepResult r = Law::step(ctx, b, side, sec, stiff, kin, breaks);
             e.stored += r.stored;
