@@ -127,10 +127,12 @@ private:
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
     std::vector<double> bond_side_;      ///< per-bond law state, bond_side_stride_ doubles each
-    /// Per-bond disc section and stiffness (they depend only on the radii and BondParams):
-    /// computed once, not every step; stale after a change of radii or bond parameters.
+    /// Per-bond constants (they depend only on the radii and BondParams): R̄, 1/R̄ and the
+    /// stiffness, computed once instead of three divisions per bond and step (32 bytes; the
+    /// rest of the section is rebuilt from R̄ and 1/R̄ by multiplications). Stale after a change
+    /// of radii or bond parameters.
     struct BondConstants {
-        BondSection section;
+        double radius = 0, inv_radius = 0;  ///< R̄ [m], 1/R̄ [1/m]
         BondStiffness stiffness;
     };
     std::vector<BondConstants> bond_const_;

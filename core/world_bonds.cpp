@@ -63,7 +63,8 @@ void World::refresh_bond_constants() {
     for (std::size_t k = 0; k < bonds_.size(); ++k) {
         const double ra = particles_.radius[static_cast<std::size_t>(bonds_[k].i)];
         const double rb = particles_.radius[static_cast<std::size_t>(bonds_[k].j)];
-        bond_const_[k] = {bond_section(bond_params_.radius_multiplier, ra, rb),
+        const BondSection sec = bond_section(bond_params_.radius_multiplier, ra, rb);
+        bond_const_[k] = {sec.radius, 1.0 / sec.radius,
                           bond_stiffness(bond_params_.effective_modulus, bond_params_.stiffness_ratio, ra, rb)};
     }
     bond_const_stale_ = false;
@@ -95,7 +96,7 @@ World::BondEnergy World::compute_bonds_with(double dt) {
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             const PairKinematics kin = pair_kinematics(s, dt);
             const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
-            const BondSection& sec = bc.section;
+            const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
             const BondStiffness& stiff = bc.stiffness;
             double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
             const BondStepResult r = Law::step(ctx, b, side, sec, stiff, kin, breaks);
