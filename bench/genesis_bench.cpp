@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/full_cube_bench.hpp"
 #include "core/parallel.hpp"
 #include "experiments/genesis.hpp"
 
 namespace gradem::bench {
-namespace {
 
 // The study's Table 2, pre-blended sand (sieve size [m], mass fraction passing), as in
 // lab_data/datasets/study.
@@ -19,6 +19,8 @@ lab::GradationCurve pre_blended_curve() {
     return lab::GradationCurve::from_points({4.75e-3, 2.36e-3, 1.18e-3, 0.595e-3, 0.4e-3, 0.3e-3, 0.149e-3, 0.075e-3},
                                             {1.0, 0.996, 0.981, 0.919, 0.832, 0.699, 0.256, 0.0});
 }
+
+namespace {
 
 constexpr double kDefaultEdge = 3.2e-3;      // [m]
 constexpr double kDefaultGrains = 3226.0;    // grains of the default cube (seed 1)
@@ -45,10 +47,10 @@ void run_genesis_bench(const std::vector<std::int64_t>& sizes, bool json) {
         if (json)
             std::printf("{\"kind\": \"genesis\", \"n\": %zu, \"edge_mm\": %.4f, \"threads\": %d, \"seconds\": %.3f, "
                         "\"iterations\": %lld, \"dem_steps\": %lld, \"unbalanced_ratio\": %.4g, \"porosity\": %.4f, "
-                        "\"converged\": %s, \"floaters\": %.4f}\n",
+                        "\"converged\": %s, \"floaters\": %.4f, \"peak_rss_mib\": %.1f}\n",
                         k.radius.size(), k.edge() * 1e3, thread_count(), k.seconds, static_cast<long long>(k.relax_iterations),
                         static_cast<long long>(k.steps), k.unbalanced_ratio, k.porosity, k.converged ? "true" : "false",
-                        k.floaters_after);
+                        k.floaters_after, static_cast<double>(peak_rss_bytes()) / 1048576.0);
         else
             std::printf("%9zu %8.3f %3d %9.2f %10lld %8lld %9.3g %8.4f %6s %8.2f%%\n", k.radius.size(), k.edge() * 1e3,
                         thread_count(), k.seconds, static_cast<long long>(k.relax_iterations), static_cast<long long>(k.steps),

@@ -3,7 +3,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "lab_data/gradation.hpp"
+
 namespace gradem::bench {
+
+/// The study's Table 2 gradation of the pre-blended sand (as lab_data/datasets/study).
+lab::GradationCurve pre_blended_curve();
 
 /// Runs genesis of the study's pre-blended sand at about each grain count and prints a table
 /// row (or a JSON row {"kind": "genesis", ...} with `json`) per size.

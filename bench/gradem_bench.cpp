@@ -8,6 +8,9 @@
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
 //                at size ratios 1, 10, 50 instead: bench/neighbor_bench.cpp)
 //   gradem-bench --genesis 20000,200000 [--json]   (genesis rows instead: bench/genesis_bench.cpp)
+//   gradem-bench --full-cube [--min-diameter-mm 0.149] [--timed 200000] [--steps 100] [--threads 2]
+//                [--transits 160] [--time-step S] [--json]   (the full-size cube's N, memory, seconds per 1000
+//                steps and whole-test estimate: bench/full_cube_bench.cpp)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -21,6 +24,7 @@
 #include "bench/neighbor_bench.hpp"
 #include "core/openmp_policy.hpp"
 #include "core/parallel.hpp"
+#include "bench/full_cube_bench.hpp"
 #include "bench/genesis_bench.hpp"
 #include "core/world.hpp"
 #include "experiments/platen_compression.hpp"
@@ -38,6 +42,9 @@ struct Options {
     bool json = false;
     std::int64_t neighbors = 0;  ///< > 0: neighbour-search rows for this many particles
     std::vector<std::int64_t> genesis;  ///< genesis rows at these grain counts (then nothing else)
+    bool full_cube = false;             ///< the full-size cube's figures (then nothing else)
+    bool steps_given = false;
+    bench::FullCubeOptions cube;        ///< --full-cube settings
 };
 
 template <class T>
@@ -59,7 +66,12 @@ Options parse(int argc, char** argv) {
         };
         if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value());
         else if (a == "--threads") o.threads = parse_list<int>(value());
-        else if (a == "--steps") o.steps = std::stoll(value());
+        else if (a == "--steps") o.steps = std::stoll(value()), o.steps_given = true;
+        else if (a == "--full-cube") o.full_cube = true;
+        else if (a == "--transits") o.cube.transits_to_stop = std::stod(value());
+        else if (a == "--timed") o.cube.timed = std::stoll(value());
+        else if (a == "--time-step") o.cube.time_step = std::stod(value());
+        else if (a == "--min-diameter-mm") o.cube.min_diameter = 1e-3 * std::stod(value());
         else if (a == "--repeat") o.repeat = std::stoi(value());
         else if (a == "--json") o.json = true;
         else if (a == "--neighbors") o.neighbors = std::stoll(value());
@@ -68,7 +80,9 @@ Options parse(int argc, char** argv) {
             std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
                          "[--repeat R] [--json]\n"
                          "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
-                         "       gradem-bench --genesis N1,N2,... [--json]\n";
+                         "       gradem-bench --genesis N1,N2,... [--json]\n"
+                         "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
+                         "                    [--transits X] [--time-step S] [--json]\n";
             std::exit(0);
         } else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
     }
@@ -77,14 +91,7 @@ Options parse(int argc, char** argv) {
     return o;
 }
 
-// Peak resident set size of this process [bytes] (VmHWM).
-std::size_t peak_rss_bytes() {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-        if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
-    return 0;
-}
+using bench::peak_rss_bytes;
 
 struct Sample {
     std::int64_t n = 0, bonds = 0, steps = 0;
@@ -181,10 +188,41 @@ void print_sample(const Sample& s, double speedup, bool json) {
 
 }  // namespace
 
+namespace gradem::bench {
+
+std::size_t peak_rss_bytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+    return 0;
+}
+
+TimedRun time_bonded_run(const exp::QuickPacking& packing, int threads, std::int64_t steps) {
+    const Sample s = run_once(packing, threads, steps);
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    World world = make_world(packing);  // the time step of the same set-up (cheap next to the run)
+    return {s.seconds, world.time_step(), s.n, s.bonds, s.rss, s.world_bytes};
+}
+
+}  // namespace gradem::bench
+
 int main(int argc, char** argv) {
     use_sleeping_openmp_threads(argv);
     try {
         const Options o = parse(argc, argv);
+        if (o.full_cube) {
+            bench::FullCubeOptions c = o.cube;
+            c.threads = o.threads.back();
+            if (o.steps_given) c.steps = o.steps;
+            c.json = o.json;
+            if (!(c.min_diameter > 0.0) || c.timed < 1000 || !(c.transits_to_stop > 0.0) || !(c.time_step >= 0.0))
+                throw std::invalid_argument("--min-diameter-mm and --transits must be > 0, --time-step >= 0, --timed >= 1000");
+            bench::run_full_cube_bench(c);
+            return 0;
+        }
         if (!o.genesis.empty()) {
             bench::run_genesis_bench(o.genesis, o.json);
             return 0;

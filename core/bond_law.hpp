@@ -58,10 +58,11 @@ struct BondSection {
     double radius_over_polar = 0;    ///< R̄/J̄ [1/m³]
 };
 
-inline BondSection bond_section(double radius_multiplier, double ra, double rb) {
+/// The section of a disc of radius R̄ [m] given with its reciprocal 1/R̄ [1/m] (multiplications
+/// only: the World keeps R̄ and 1/R̄ per bond and rebuilds the rest each step).
+inline BondSection bond_section_of_radius(double radius, double inv_r) {
     BondSection s;
-    s.radius = radius_multiplier * (ra < rb ? ra : rb);
-    const double inv_r = 1.0 / s.radius;
+    s.radius = radius;
     s.area = kPi * s.radius * s.radius;
     s.inertia = 0.25 * s.area * s.radius * s.radius;
     s.polar = 2.0 * s.inertia;
@@ -69,6 +70,11 @@ inline BondSection bond_section(double radius_multiplier, double ra, double rb) 
     s.radius_over_inertia = 4.0 * s.inv_area * inv_r;
     s.radius_over_polar = 0.5 * s.radius_over_inertia;
     return s;
+}
+
+inline BondSection bond_section(double radius_multiplier, double ra, double rb) {
+    const double radius = radius_multiplier * (ra < rb ? ra : rb);
+    return bond_section_of_radius(radius, 1.0 / radius);
 }
 
 struct BondStiffness {

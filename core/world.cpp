@@ -60,6 +60,7 @@ void World::set_bond_stiffness(double effective_modulus, double stiffness_ratio)
         f.effective_modulus = effective_modulus;
         f.stiffness_ratio = stiffness_ratio;
     }
+    bond_const_stale_ = true;
     forces_current_ = false;
     if (sim_.time_step == 0.0) dt_ = 0.0;
 }
@@ -93,12 +94,14 @@ void World::scale_radii(double factor) {
         r_max = std::max(r_max, particles_.radius[i]);
     }
     radius_growth_since_rebuild_ += std::fabs(factor - 1.0) * r_max;
+    bond_const_stale_ = true;
     forces_current_ = false;
     if (sim_.time_step == 0.0) dt_ = 0.0;
 }
 
 ParticleSet& World::edit_particles() {
     rebuild_needed_ = true;
+    bond_const_stale_ = true;
     forces_current_ = false;
     return particles_;
 }
@@ -224,7 +227,7 @@ std::size_t World::memory_bytes() const {
     return bytes(p.position) + bytes(p.velocity) + bytes(p.spin) + bytes(p.force) +
            bytes(p.torque) + bytes(p.radius) + bytes(p.mass) + bytes(p.inertia) + bytes(p.flags) +
            bytes(pairs_) + bytes(pair_out_) + bytes(incidence_start_) + bytes(incidence_) +
-           bytes(bonds_) + bytes(bond_side_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
+           bytes(bonds_) + bytes(bond_side_) + bytes(bond_const_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
            bytes(position_at_rebuild_);
 }
 

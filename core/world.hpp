@@ -136,6 +136,16 @@ private:
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
     std::vector<double> bond_side_;      ///< per-bond law state, bond_side_stride_ doubles each
+    /// Per-bond constants (they depend only on the radii and BondParams): R̄, 1/R̄ and the
+    /// stiffness, computed once instead of three divisions per bond and step (32 bytes; the
+    /// rest of the section is rebuilt from R̄ and 1/R̄ by multiplications). Stale after a change
+    /// of radii or bond parameters.
+    struct BondConstants {
+        double radius = 0, inv_radius = 0;  ///< R̄ [m], 1/R̄ [1/m]
+        BondStiffness stiffness;
+    };
+    std::vector<BondConstants> bond_const_;
+    bool bond_const_stale_ = true;
     std::size_t bond_side_stride_ = 0;   ///< 0 for laws without side state (parallel bond)
     std::vector<Wall> walls_;
     std::vector<WallContact> wall_contacts_;
@@ -183,6 +193,7 @@ private:
         }
     };
     BondEnergy compute_bonds(double dt);
+    void refresh_bond_constants();
     template <class Law>
     BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);

@@ -84,12 +84,28 @@ std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
                 decltype(law)::install(bond_family_params_[bonds_[k].family_pair], normals[k],
                                        bond_side_.data() + k * stride);
         });
+    bond_const_stale_ = true;
     rebuild_needed_ = true;
     forces_current_ = false;
     return bonds_.size();
 }
 
+// The same expressions the kernel evaluated every step before, so the values are bitwise equal.
+void World::refresh_bond_constants() {
+    bond_const_.resize(bonds_.size());
+    bond_const_.shrink_to_fit();
+    for (std::size_t k = 0; k < bonds_.size(); ++k) {
+        const double ra = particles_.radius[static_cast<std::size_t>(bonds_[k].i)];
+        const double rb = particles_.radius[static_cast<std::size_t>(bonds_[k].j)];
+        const BondParams& bp = bond_family_params_[bonds_[k].family_pair];
+        const BondSection sec = bond_section(bp.radius_multiplier, ra, rb);
+        bond_const_[k] = {sec.radius, 1.0 / sec.radius, bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb)};
+    }
+    bond_const_stale_ = false;
+}
+
 World::BondEnergy World::compute_bonds(double dt) {
+    if (bond_const_stale_) refresh_bond_constants();
     return visit_bond_law(bond_params_.model,
                           [&](auto law) { return compute_bonds_with<decltype(law)>(dt); });
 }
@@ -114,10 +130,10 @@ World::BondEnergy World::compute_bonds_with(double dt) {
                               particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             const PairKinematics kin = pair_kinematics(s, dt);
-            const BondParams& bp = bond_family_params_[b.family_pair];
             const typename Law::Context& ctx = contexts[b.family_pair];
-            const BondSection sec = bond_section(bp.radius_multiplier, s.ra, s.rb);
-            const BondStiffness stiff = bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, s.ra, s.rb);
+            const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
+            const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
+            const BondStiffness& stiff = bc.stiffness;
             double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
             const BondStepResult r = Law::step(ctx, b, side, sec, stiff, kin, breaks);
             e.stored += r.stored;

@@ -12,7 +12,9 @@
 namespace gradem {
 namespace {
 
-inline double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+// Branch-free (velocity signs are random, a branch mispredicts half the time): +1, -1 or 0,
+// exactly the values of the ternary form, so the damping force is bitwise the same.
+inline double sign(double v) { return static_cast<double>(v > 0.0) - static_cast<double>(v < 0.0); }
 
 // Cundall local non-viscous damping, component-wise: F_d,k = -alpha |F_k| sign(v_k)
 // (physics.md §5.3; YADE NewtonIntegrator::cundallDamp1st), v the latest half-step velocity.

@@ -36,7 +36,7 @@ namespace gradem::exp {
 
 // Format 2: i64 relax_iterations after steps. Genesis 2: enthalpy minimisation + Morton order.
 inline constexpr std::uint32_t kPackingFormatVersion = 2;
-inline constexpr std::uint32_t kGenesisAlgorithmVersion = 2;
+inline constexpr std::uint32_t kGenesisAlgorithmVersion = 3;  // 3: grains Morton-sorted inside the packer
 
 /// A cache file that cannot be used; the message names the file and what is wrong.
 class PackingCacheError : public std::runtime_error {

@@ -177,3 +177,33 @@ TEST_CASE("strength scatter: per-bond strengths follow the truncated normal", "[
     again.install_bonds(bp, 1.0e-9);
     CHECK(again.bonds()[100].tensile_strength == world.bonds()[100].tensile_strength);
 }
+
+// The World keeps per-bond constants (R̄, 1/R̄, k̄_n, k̄_s) instead of recomputing them every
+// step; they must follow every change of the stiffness parameters and of the radii.
+TEST_CASE("bond stiffness follows set_bond_stiffness and scale_radii (per-bond constants refreshed)",
+          "[core][bond]") {
+    BondRig rig(strong_bond());
+    const double v = 1.0e-4;  // m/s -> 1e-11 m per step
+    const auto opening = [&] {
+        const ParticleSet& p = rig.world.particles();
+        return norm(p.position[1] - p.position[0]);
+    };
+    rig.drive({v, 0, 0}, {}, 200);
+    const double f0 = rig.bond().normal_force, d0 = opening();
+    CHECK(f0 == Approx(rig.stiffness.normal * rig.section.area * (d0 - 2.0 * kR - kGap)).epsilon(1e-9));
+
+    rig.world.set_bond_stiffness(2.0 * kModulus, kKappa);  // k̄_n doubles
+    rig.drive({v, 0, 0}, {}, 200);
+    const double f1 = rig.bond().normal_force, d1 = opening();
+    CHECK(f1 - f0 == Approx(2.0 * rig.stiffness.normal * rig.section.area * (d1 - d0)).epsilon(1e-6));
+
+    const double factor = 1.01;  // R̄ and Ā grow, k̄_n = Ē*/(R_A + R_B) shrinks: k̄_n Ā x factor
+    rig.world.scale_radii(factor);
+    rig.world.set_time_step(rig.dt);
+    rig.drive({v, 0, 0}, {}, 200);
+    const double f2 = rig.bond().normal_force, d2 = opening();
+    const BondSection s2 = bond_section(1.0, factor * kR, factor * kR);
+    const BondStiffness k2 = bond_stiffness(2.0 * kModulus, kKappa, factor * kR, factor * kR);
+    CHECK(f2 - f1 == Approx(k2.normal * s2.area * (d2 - d1)).epsilon(1e-6));
+    CHECK(k2.normal * s2.area == Approx(2.0 * factor * rig.stiffness.normal * rig.section.area).epsilon(1e-12));
+}
