@@ -79,6 +79,14 @@ double platen_imbalance(const PlatenTestResult& t) {
     return worst;
 }
 
+void count_family_bonds(const World& world, const Packing& packing, CubeTestResult& r) {
+    for (const ParallelBond& b : world.bonds()) {
+        const int paste_ends = (packing.family[static_cast<std::size_t>(b.i)] == kPasteFamily) +
+                               (packing.family[static_cast<std::size_t>(b.j)] == kPasteFamily);
+        ++(paste_ends == 0 ? r.bonds_sand_sand : paste_ends == 1 ? r.bonds_itz : r.bonds_paste_paste);
+    }
+}
+
 }  // namespace
 
 World settled_cube_specimen(const Packing& packing, const MaterialParams& material, const CubeTestSpec& spec,
@@ -89,6 +97,7 @@ World settled_cube_specimen(const Packing& packing, const MaterialParams& materi
     World world = build_specimen(packing, material);
     r.particles = world.particles().size();
     r.bonds = world.bonds().size();
+    if (!packing.family.empty()) count_family_bonds(world, packing, r);
     r.settle_steps = settle(world, spec, r.settle_ratio);
     if (r.settle_ratio >= spec.settle_ratio)
         r.warnings.push_back("settling stopped at unbalanced-force ratio " + std::to_string(r.settle_ratio) +
