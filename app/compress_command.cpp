@@ -80,7 +80,7 @@ void print_summary(const exp::CubeTestResult& r, const std::optional<exp::RateCh
 }
 
 void print_paste_summary(const exp::PasteReport& p, const exp::CubeTestResult& r) {
-    std::printf("explicit paste:\n%s\n", exp::describe(p).c_str());
+    std::printf("%s\n", exp::describe(p).c_str());
     std::printf("  bonds per family     %zu sand-sand, %zu sand-paste, %zu paste-paste\n", r.bonds_sand_sand, r.bonds_itz,
                 r.bonds_paste_paste);
 }
