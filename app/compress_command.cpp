@@ -22,6 +22,7 @@
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/packing_cache.hpp"
+#include "experiments/paste_cache.hpp"
 #include "reports/cube_output.hpp"
 #include "reports/html_report.hpp"
 
@@ -78,6 +79,12 @@ void print_summary(const exp::CubeTestResult& r, const std::optional<exp::RateCh
     std::printf("  results in           %s\n", out.c_str());
 }
 
+void print_paste_summary(const exp::PasteReport& p, const exp::CubeTestResult& r) {
+    std::printf("%s\n", exp::describe(p).c_str());
+    std::printf("  bonds per family     %zu sand-sand, %zu sand-paste, %zu paste-paste\n", r.bonds_sand_sand, r.bonds_itz,
+                r.bonds_paste_paste);
+}
+
 }  // namespace
 
 int run_compress(const std::vector<std::string>& args) {
@@ -90,7 +97,11 @@ int run_compress(const std::vector<std::string>& args) {
     bool cached = false;
     if (!std::filesystem::exists(exp::packing_cache_path(config.cache_dir, exp::packing_key(curve, config.specimen))))
         std::fprintf(stderr, "compress: generating the packing (genesis) ...\n");
-    const exp::Packing packing = exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
+    std::optional<exp::PasteReport> paste;  // explicit paste (issue 11): the fill's report
+    if (config.specimen.paste) paste.emplace();
+    const exp::Packing packing =
+        paste ? exp::load_or_generate_paste(curve, config.specimen, config.cache_dir, &cached, &*paste)
+              : exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
     std::fprintf(stderr, "compress: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
 
     exp::CubeTestSpec spec = config.test;
@@ -108,8 +119,10 @@ int run_compress(const std::vector<std::string>& args) {
         check = exp::compare_rates(result, slow, spec.loading.strain_rate);
         half_diverged = slow.diverged();
     }
-    exp::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check);
+    exp::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check,
+                            paste ? &*paste : nullptr);
     print_summary(result, check, config.out_dir.string());
+    if (paste) print_paste_summary(*paste, result);
     report::write_html_report_or_warn(report::ReportKind::compress, config.out_dir, std::cout);
     if (result.diverged() || half_diverged) {
         std::fprintf(stderr, "gradem: the simulation diverged: %s\n",

@@ -74,13 +74,15 @@ public:
                 exp::SpecimenSpec spec = base_.specimen;
                 spec.seed = seed;
                 const std::uint64_t key = exp::packing_key(curves_[s], spec);
-                const std::filesystem::path path = exp::packing_cache_path(base_.cache_dir, key);
+                const std::filesystem::path path = spec.paste ? exp::paste_cache_path(curves_[s], spec, base_.cache_dir)
+                                                              : exp::packing_cache_path(base_.cache_dir, key);
                 std::error_code ec;
                 if (!std::filesystem::exists(path, ec))
                     throw std::runtime_error("packing of " + names_[s] + ", seed " + std::to_string(seed) + " not found at " +
                                              std::filesystem::absolute(path).string() +
                                              " (the packing cache folder must be one every rank can read, e.g. on a shared file system)");
-                packings_.emplace(std::make_pair(s, seed), exp::load_packing(path, key));
+                packings_.emplace(std::make_pair(s, seed), spec.paste ? exp::load_or_generate_paste(curves_[s], spec, base_.cache_dir)
+                                                                      : exp::load_packing(path, key));
             }
     }
 

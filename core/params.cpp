@@ -92,6 +92,8 @@ std::optional<std::string> SimParams::invalid_reason() const {
         return violation("SimParams::time_step_safety", time_step_safety, "in (0, 1]");
     if (!(skin_fraction > 0.0 && skin_fraction <= 2.0))
         return violation("SimParams::skin_fraction", skin_fraction, "in (0, 2]");
+    if (!(divergence_energy_floor >= 0.0))
+        return violation("SimParams::divergence_energy_floor", divergence_energy_floor, ">= 0");
     if (!positive(divergence_energy_factor))
         return violation("SimParams::divergence_energy_factor", divergence_energy_factor, "> 0");
     return std::nullopt;

@@ -82,6 +82,7 @@ struct SimParams {
     double skin_fraction = 0.15;     ///< Verlet skin as a fraction of the minimum radius [-]
     bool track_energy = true;        ///< energy bookkeeping every step (small cost)
     double divergence_energy_factor = 10.0;  ///< diverged if E_kin > factor * energy supplied
+    double divergence_energy_floor = 0.0;    ///< ... and E_kin > this [J] (round-off motion of a stress-free specimen is not a blow-up)
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

@@ -143,7 +143,8 @@ void World::check_divergence(const IntegrationSums& sums) {
         why << "step " << step_ << ": energy is not finite";
     } else if (sim_.track_energy) {
         const double supplied = std::fabs(energy_.reference) + std::fabs(energy_.boundary_work);
-        if (energy_.kinetic > sim_.divergence_energy_factor * supplied && energy_.kinetic > 0.0)
+        if (energy_.kinetic > sim_.divergence_energy_factor * supplied && energy_.kinetic > sim_.divergence_energy_floor &&
+            energy_.kinetic > 0.0)
             why << "step " << step_ << ": kinetic energy " << energy_.kinetic
                 << " J exceeds " << sim_.divergence_energy_factor
                 << " x the energy supplied (" << supplied << " J): numerical instability";

@@ -43,6 +43,10 @@ World build_specimen(const Packing& k, const MaterialParams& m) {
     }
     SimParams sim;
     sim.local_damping = m.damping;
+    // A stress-free start (explicit paste) supplies ~1e-29 J: kinetic energies below the cube's
+    // elastic energy at a strain of 1e-9 (½ E* L³ ε²) are round-off, not an instability.
+    const double edge = k.edge(), strain = 1e-9;
+    sim.divergence_energy_floor = 0.5 * m.contact.effective_modulus * edge * edge * edge * strain * strain;
     World world(std::move(particles), m.contact, sim);
     if (paste) world.install_bonds(family_bonds(m), m.bond_gap(mean_radius(k)));
     else world.install_bonds(m.bond, m.bond_gap(mean_radius(k)));
@@ -79,6 +83,14 @@ double platen_imbalance(const PlatenTestResult& t) {
     return worst;
 }
 
+void count_family_bonds(const World& world, const Packing& packing, CubeTestResult& r) {
+    for (const ParallelBond& b : world.bonds()) {
+        const int paste_ends = (packing.family[static_cast<std::size_t>(b.i)] == kPasteFamily) +
+                               (packing.family[static_cast<std::size_t>(b.j)] == kPasteFamily);
+        ++(paste_ends == 0 ? r.bonds_sand_sand : paste_ends == 1 ? r.bonds_itz : r.bonds_paste_paste);
+    }
+}
+
 }  // namespace
 
 World settled_cube_specimen(const Packing& packing, const MaterialParams& material, const CubeTestSpec& spec,
@@ -89,6 +101,7 @@ World settled_cube_specimen(const Packing& packing, const MaterialParams& materi
     World world = build_specimen(packing, material);
     r.particles = world.particles().size();
     r.bonds = world.bonds().size();
+    if (!packing.family.empty()) count_family_bonds(world, packing, r);
     r.settle_steps = settle(world, spec, r.settle_ratio);
     if (r.settle_ratio >= spec.settle_ratio)
         r.warnings.push_back("settling stopped at unbalanced-force ratio " + std::to_string(r.settle_ratio) +

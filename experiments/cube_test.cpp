@@ -7,6 +7,7 @@
 #include "core/world.hpp"
 #include "experiments/material_table.hpp"
 #include "experiments/cube_specimen.hpp"
+#include "experiments/paste_spec.hpp"
 
 namespace gradem::exp {
 
@@ -44,9 +45,22 @@ CubeTestResult run_cube_test(const Packing& packing, const MaterialParams& mater
     return r;
 }
 
+double mean_particle_density(const Packing& packing) {
+    // Paste particles carry the paste they stand for (density paste_density, not the sand's).
+    double mass = 0.0, volume = 0.0;
+    for (std::size_t i = 0; i < packing.radius.size(); ++i) {
+        const double r = packing.radius[i];
+        const double v = 4.0 / 3.0 * M_PI * r * r * r;
+        const bool paste = i < packing.family.size() && packing.family[i] == kPasteFamily;
+        mass += v * (paste ? packing.paste_density : packing.density);
+        volume += v;
+    }
+    return volume > 0.0 ? mass / volume : packing.density;
+}
+
 double quasi_static_strain_rate(const Packing& packing, const MaterialParams& material,
                                 double expected_peak_strain, double transits) {
-    const double wave_speed = std::sqrt(material.contact.effective_modulus / packing.density);
+    const double wave_speed = std::sqrt(material.contact.effective_modulus / mean_particle_density(packing));
     const double transit = packing.edge() / wave_speed;
     return expected_peak_strain / (transits * transit);
 }

@@ -66,6 +66,9 @@ struct CubeTestResult {
     lab::CurveReduction macro;           ///< ASTM reductions of the gauge-strain curve
     std::vector<BreakEvent> cracks;      ///< every bond break, in order
     std::size_t particles = 0, bonds = 0;
+    /// Explicit paste: bonds installed per family pair, by the end particles' families
+    /// (sand-sand, sand-paste (ITZ), paste-paste); all 0 for a parallel-bond specimen.
+    std::size_t bonds_sand_sand = 0, bonds_itz = 0, bonds_paste_paste = 0;
     double strain_at_peak_platen = 0.0;  ///< platen strain at the peak [-]
     double platen_imbalance = 0.0;       ///< max |σ_top - σ_bottom| / σ before the peak [-]
     double settle_ratio = 0.0;           ///< unbalanced-force ratio reached before loading [-]
@@ -79,8 +82,13 @@ struct CubeTestResult {
 CubeTestResult run_cube_test(const Packing& packing, const MaterialParams& material,
                              const CubeTestSpec& spec, const ProgressCallback& progress = {});
 
+/// Total particle mass / total particle volume [kg/m^3]: the sand density for a sand-only
+/// packing; for explicit paste the paste particles' own (scaled) density weighs in by volume.
+double mean_particle_density(const Packing& packing);
+
 /// The strain rate [1/s] that keeps the time to the expected peak at least `transits` wave
-/// transit times L/c, with c = sqrt(E*/rho) (physics.md §6 criterion (i)).
+/// transit times L/c, with c = sqrt(E*/rho) and rho = mean_particle_density(packing), the
+/// specimen's actual particle masses (physics.md §6 criterion (i)).
 double quasi_static_strain_rate(const Packing& packing, const MaterialParams& material,
                                 double expected_peak_strain = 0.003, double transits = 200.0);
 

@@ -87,6 +87,24 @@ json specimen_json(const Packing& k, const CubeConfig& c) {
             {"scale", c.specimen.size_rule.scale}};
 }
 
+/// Explicit paste (issue 11): the fill's report and the bonds per family pair.
+json paste_json(const PasteReport& p, const CubeTestResult& r) {
+    return {{"sand_count", p.sand_count},
+            {"paste_count", p.paste_count},
+            {"paste_d_min_mm", p.paste_d_min * kMm},
+            {"paste_d_max_mm", p.paste_d_max * kMm},
+            {"size_ratio", json_number<json>(p.size_ratio)},
+            {"sand_fraction", json_number<json>(p.sand_fraction)},
+            {"paste_fraction", json_number<json>(p.paste_fraction)},
+            {"paste_particle_fraction", json_number<json>(p.paste_particle_fraction)},
+            {"mix_sand_fraction", json_number<json>(p.mix_sand_fraction)},
+            {"mix_paste_fraction", json_number<json>(p.mix_paste_fraction)},
+            {"mix_air_fraction", json_number<json>(p.mix_air_fraction)},
+            {"void_fraction", json_number<json>(p.void_fraction)},
+            {"max_overlap_sand", json_number<json>(p.max_overlap_sand)},
+            {"bonds", {{"sand_sand", r.bonds_sand_sand}, {"sand_paste", r.bonds_itz}, {"paste_paste", r.bonds_paste_paste}}}};
+}
+
 json rate_check_json(const RateCheck& r) {
     return {{"strain_rate_per_s", r.strain_rate},
             {"half_rate_per_s", r.half_rate},
@@ -142,7 +160,7 @@ std::string cracks_csv(const CubeTestResult& r) {
 }
 
 std::string macro_json(const CubeTestResult& r, const CubeConfig& c, const Packing& k, double strain_rate,
-                       const std::optional<RateCheck>& rate_check) {
+                       const std::optional<RateCheck>& rate_check, const PasteReport* paste) {
     const lab::CurveReduction& m = r.macro;
     std::int64_t tension = 0, shear = 0;
     for (const BreakEvent& e : r.cracks) ++(e.mode == BondState::broken_shear ? shear : tension);
@@ -181,6 +199,7 @@ std::string macro_json(const CubeTestResult& r, const CubeConfig& c, const Packi
         {"specimen", specimen_json(k, c)},
     };
     if (rate_check) j["rate_check"] = rate_check_json(*rate_check);
+    if (paste) j["paste"] = paste_json(*paste, r);
     return j.dump(2) + "\n";
 }
 
@@ -210,10 +229,10 @@ SnapshotCallback vtk_snapshots(const std::filesystem::path& dir, int every) {
 }
 
 void write_cube_outputs(const std::filesystem::path& dir, const CubeTestResult& r, const CubeConfig& c, const Packing& k,
-                        double strain_rate, const std::optional<RateCheck>& rate_check) {
+                        double strain_rate, const std::optional<RateCheck>& rate_check, const PasteReport* paste) {
     common::write_file_atomically(dir / "load_curve.csv", load_curve_csv(r));
     common::write_file_atomically(dir / "cracks.csv", cracks_csv(r));
-    common::write_file_atomically(dir / "macro.json", macro_json(r, c, k, strain_rate, rate_check));
+    common::write_file_atomically(dir / "macro.json", macro_json(r, c, k, strain_rate, rate_check, paste));
 }
 
 }  // namespace gradem::exp

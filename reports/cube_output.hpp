@@ -10,7 +10,9 @@
 //                   platens, ASTM C469 chord modulus, tangent modulus, Poisson's ratio, Popovics
 //                   fit), the run (particles, bonds, steps, time step, wall time, stop reason,
 //                   warnings, breaks by mode), the material in SI and display units, the
-//                   specimen summary and the rate check if one was run. NaN is written as null.
+//                   specimen summary and the rate check if one was run; for an explicit-paste
+//                   specimen, "paste": counts, size ratio, volume fractions placed vs the mix
+//                   design, bonds per family pair. NaN is written as null.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -18,6 +20,7 @@
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/genesis.hpp"
+#include "experiments/paste_fill.hpp"
 
 namespace gradem::exp {
 
@@ -39,7 +42,8 @@ RateCheck compare_rates(const CubeTestResult& at_rate, const CubeTestResult& at_
 std::string load_curve_csv(const CubeTestResult& result);
 std::string cracks_csv(const CubeTestResult& result);
 std::string macro_json(const CubeTestResult& result, const CubeConfig& config, const Packing& packing,
-                       double strain_rate, const std::optional<RateCheck>& rate_check = {});
+                       double strain_rate, const std::optional<RateCheck>& rate_check = {},
+                       const PasteReport* paste = nullptr);
 
 /// A CubeTestSpec::snapshot that writes ParaView files into `dir` at the first recorded point
 /// and then every `every`-th one (0: every 20th): particles_NNNNNN.vtp (with displacement since
@@ -50,6 +54,7 @@ SnapshotCallback vtk_snapshots(const std::filesystem::path& dir, int every);
 /// Writes load_curve.csv, cracks.csv and macro.json into `dir` (created), each atomically.
 /// `strain_rate` [1/s] is the rate the test ran at (resolved from "auto").
 void write_cube_outputs(const std::filesystem::path& dir, const CubeTestResult& result, const CubeConfig& config,
-                        const Packing& packing, double strain_rate, const std::optional<RateCheck>& rate_check = {});
+                        const Packing& packing, double strain_rate, const std::optional<RateCheck>& rate_check = {},
+                        const PasteReport* paste = nullptr);
 
 }  // namespace gradem::exp

@@ -51,3 +51,49 @@ TEST_CASE("twin experiment, real DEM: modulus and peak within 3 %, parameters wi
         }
     CHECK(r.runs_used <= 16);
 }
+
+TEST_CASE("explicit paste: a tiny paste calibration runs end to end and moves towards the twin's modulus", "[calibrate][paste]") {
+    // A 1.3 mm paste cube (sand 0.3-0.42 mm, paste 0.12 mm: ≈ 520 particles); synthetic targets
+    // from seed 2 at E* = 15 GPa; only E* free, 4 runs on seed 1.
+    TempDir dir("cal-paste");
+    const std::string study = (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string();
+    test::write_text(dir.path / "base.toml",
+                     "[specimen]\ndataset = \"" + study + "\"\nsand = \"pre-blended\"\nrepresentation = \"explicit_paste\"\n"
+                     "[mix]\nsand_to_cementitious_volume = 2.0\n"
+                     "[paste]\nmin_diameter_mm = 0.12\nmax_diameter_mm = 0.12\n"
+                     "[size_rule]\nmin_diameter_mm = 0.3\nmax_diameter_mm = 0.42\n"
+                     "[genesis]\nedge_mm = 1.3\ntarget_solid_fraction = 0.5\nequilibrium_ratio = 0.05\n"
+                     "[material]\neffective_modulus_gpa = 11.0\ntensile_strength_mpa = 9.0\ncohesion_mpa = 18.0\nbond_gap_fraction = 0.5\n"
+                     "[test]\nstrain_rate_per_s = \"auto\"\nmax_settle_steps = 200\n"
+                     "[output]\ndir = \"out\"\ncache_dir = \"cache\"\n");
+    const exp::CubeConfig cube = exp::load_cube_config(dir.path / "base.toml");
+    REQUIRE(cube.specimen.paste);
+
+    auto model = cal::make_dem_model(cube, {"pre-blended"});
+    model->prepare({1, 2}, 2, {});
+    exp::MaterialParams truth = cube.material;
+    truth.contact.effective_modulus = truth.bond.effective_modulus = 15e9;
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, {"pre-blended"}, truth, {2}).dump(1));
+    // The MPI workers' path: a fresh model loads the cached paste specimen and runs it bitwise the same.
+    auto worker = cal::make_dem_model(cube, {"pre-blended"});
+    worker->load_prepared({1});
+    const cal::RunOutcome a = model->run({0, 1, cube.material}, 0.0), b = worker->run({0, 1, cube.material}, 0.0);
+    REQUIRE(a.ok());
+    CHECK(a.particles > 400);
+    CHECK(a.modulus_pa == b.modulus_pa);
+    CHECK(a.peak_pa == b.peak_pa);
+
+    test::write_text(dir.path / "problem.toml",
+                     "[calibration]\nbase = \"base.toml\"\nsands = [\"pre-blended\"]\nseeds = [1]\n"
+                     "[targets]\nlab_results = \"lab_results.json\"\n"
+                     "[parameters.tensile_strength_mpa]\nfree = false\n[parameters.cohesion_ratio]\nfree = false\n"
+                     "[parameters.strength_cv]\nfree = false\n"
+                     "[solver]\nmax_runs = 4\n[run]\nworkers = 2\n[output]\ndir = \"out\"\n");
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(dir.path / "problem.toml");
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    CHECK(r.runs_failed == 0);
+    CHECK(r.runs_used <= 4);
+    const double got = r.stages.at(0).solution.best.at(0);  // E* [GPa]
+    INFO("E* from 11 GPa towards 15 GPa: " << got);
+    CHECK(std::fabs(got - 15.0) < std::fabs(11.0 - 15.0));
+}

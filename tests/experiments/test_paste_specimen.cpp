@@ -13,7 +13,10 @@
 #include "experiments/cube_specimen.hpp"
 #include "experiments/packing_cache.hpp"
 #include "experiments/paste_cache.hpp"
+#include "experiments/tension_test.hpp"
 #include "common/input_error.hpp"
+#include "reports/cube_output.hpp"
+#include <nlohmann/json.hpp>
 #include "study_curves.hpp"
 
 using namespace gradem;
@@ -207,4 +210,93 @@ TEST_CASE("paste specimen: the cube test is bitwise the same for 1, 2 and 3 thre
     REQUIRE(stress[0].size() > 5);
     CHECK(stress[0] == stress[1]);
     CHECK(stress[0] == stress[2]);
+}
+
+TEST_CASE("paste specimen: the auto loading rate is quasi-static by the particles' own masses", "[paste]") {
+    // Criterion (physics.md §6 (i)): time to the expected peak ε_p/ε̇ ≥ 200 transits L/c, c =
+    // sqrt(E*/ρ) with ρ = Σm/ΣV of the bonded World's particles (paste particles weigh
+    // paste density / solid fraction: the sand density would give a rate too fast).
+    const test::TempDir dir("paste-rate");
+    const Packing k = load_or_generate(test::pre_blended_curve(), small_paste_spec(), dir.path);
+    MaterialParams m;
+    CubeTestSpec spec;
+    spec.max_settle_steps = 0;
+    CubeTestResult r;
+    const World w = settled_cube_specimen(k, m, spec, r);
+    double mass = 0.0, volume = 0.0;
+    for (std::size_t i = 0; i < w.particles().size(); ++i) {
+        const double rad = w.particles().radius[i];
+        mass += w.particles().mass[i];
+        volume += 4.0 / 3.0 * M_PI * rad * rad * rad;
+    }
+    const double rho = mass / volume;
+    REQUIRE(rho > 1.2 * k.density);  // 3595 vs 2640 kg/m³ here
+    CHECK(mean_particle_density(k) == Approx(rho).epsilon(1e-12));
+    const auto transits = [&](double rate, double density) {
+        return (0.003 / rate) / (k.edge() / std::sqrt(m.contact.effective_modulus / density));
+    };
+    const double rate = quasi_static_strain_rate(k, m);
+    CHECK(transits(rate, rho) == Approx(200.0).epsilon(1e-9));
+    // Every particle at the sand density (families cleared): the sand rule, 200 transits too.
+    Packing sand_only = k;
+    sand_only.family.clear();
+    CHECK(transits(quasi_static_strain_rate(sand_only, m), k.density) == Approx(200.0).epsilon(1e-9));
+    // The sand-density rate would give the paste specimen fewer than 200 transits.
+    CHECK(transits(quasi_static_strain_rate(sand_only, m), rho) < 180.0);  // 200 sqrt(2640/3595) = 171
+}
+
+TEST_CASE("paste specimen: macro.json carries the paste report and the bonds per family", "[paste]") {
+    const test::TempDir dir("paste-macro");
+    PasteReport report;
+    bool cached = true;
+    const Packing k = load_or_generate_paste(test::pre_blended_curve(), small_paste_spec(), dir.path, &cached, &report);
+    CHECK_FALSE(cached);
+    MaterialParams m;
+    m.bond_gap_fraction = 0.5;
+    CubeTestSpec spec;
+    spec.max_settle_steps = 0;
+    CubeTestResult r;
+    const World w = settled_cube_specimen(k, m, spec, r);
+    // Oracle: the families of the packing, counted here.
+    std::size_t paste_count = 0, itz = 0, paste_paste = 0;
+    for (std::uint8_t f : k.family) paste_count += f == kPasteFamily;
+    for (const ParallelBond& b : w.bonds()) {
+        const int ends = (k.family[static_cast<std::size_t>(b.i)] == kPasteFamily) + (k.family[static_cast<std::size_t>(b.j)] == kPasteFamily);
+        itz += ends == 1;
+        paste_paste += ends == 2;
+    }
+    CubeConfig c;
+    c.specimen = small_paste_spec();
+    const auto j = nlohmann::json::parse(macro_json(r, c, k, 1.0, {}, &report));
+    REQUIRE(j.contains("paste"));
+    const auto& p = j["paste"];
+    CHECK(p["paste_count"].get<std::size_t>() == paste_count);
+    CHECK(p["sand_count"].get<std::size_t>() == k.radius.size() - paste_count);
+    CHECK(p["bonds"]["sand_sand"].get<std::size_t>() == 0);  // sand-sand frictional by default
+    CHECK(p["bonds"]["sand_paste"].get<std::size_t>() == itz);
+    CHECK(p["bonds"]["paste_paste"].get<std::size_t>() == paste_paste);
+    CHECK(itz + paste_paste == j["run"]["bonds"].get<std::size_t>());
+    // Volume placed vs the mix design (the fill's tolerance, test_paste.cpp: 2 % absolute).
+    CHECK(p["paste_fraction"].get<double>() == Approx(p["mix_paste_fraction"].get<double>()).margin(0.02));
+    CHECK(p["size_ratio"].get<double>() == Approx(report.sand_d_max / report.paste_d_min));
+    // A parallel-bond specimen's macro.json has no paste block.
+    CHECK_FALSE(nlohmann::json::parse(macro_json(r, c, k, 1.0)).contains("paste"));
+}
+
+TEST_CASE("paste specimen: the direct tension test runs past its stress-free start to a peak", "[paste]") {
+    // The paste specimen starts free of stress (~1e-29 J supplied): round-off motion after the
+    // settling must not read as an instability (SimParams::divergence_energy_floor).
+    const test::TempDir dir("paste-tension");
+    const Packing k = load_or_generate(test::pre_blended_curve(), small_paste_spec(), dir.path);
+    MaterialParams m;
+    m.bond.tensile_strength_mean = 3.0e6;
+    m.bond.cohesion_mean = 6.0e6;
+    m.bond_gap_fraction = 0.5;
+    TensionTestSpec t;
+    t.test.max_settle_steps = 2000;
+    t.test.loading.strain_rate = 2.0;
+    const TensionTestResult r = run_tension_test(k, m, t);
+    INFO(r.cube.test.stop_reason);
+    CHECK_FALSE(r.cube.diverged());
+    CHECK(r.cube.macro.peak_stress_pa > 0.1e6);
 }
