@@ -298,9 +298,9 @@ TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[
                                    "set model = \"flat_joint\""});
         write_file(file, config_with("material", "model = \"soft_bond\"\nresidual_friction = 0.5"));
         require_rejected(file, 5, {"'material.residual_friction' belongs to bond model flat_joint"});
-        write(file, config_with("material", "bond_replaces_contact = true"));
+        write_file(file, config_with("material", "bond_replaces_contact = true"));
         require_rejected(file, 4, {"'material.bond_replaces_contact' belongs to bond model soft_bond, flat_joint"});
-        write(file, config_with("material", "model = \"soft_bond\"\nbond_replaces_contact = 1"));
+        write_file(file, config_with("material", "model = \"soft_bond\"\nbond_replaces_contact = 1"));
         require_rejected(file, 5, {"key 'material.bond_replaces_contact' = 1: expected true or false"});
     }
     SECTION("shape parameters out of range") {
