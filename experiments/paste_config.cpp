@@ -1,6 +1,7 @@
 #include "experiments/paste_config.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "lab_data/dataset.hpp"
 #include "common/input_error.hpp"
@@ -82,11 +83,11 @@ void read_paste(Context& ctx, const toml::table& root, PasteSpec& p, MaterialPar
         throw InputError(ctx.file, ctx.keys["paste.sand_sand"].line,
                          "key 'paste.sand_sand' = \"" + sand_sand + "\": expected \"frictional\" or \"bonded\"");
     f.sand_sand_bonded = sand_sand == "bonded";
-    for (const char* key : {"itz_strength_factor", "itz_modulus_factor"}) {
-        const double v = std::string(key) == "itz_strength_factor" ? f.itz_strength_factor : f.itz_modulus_factor;
+    for (const auto& [key, v] : {std::pair<std::string, double>{"itz_strength_factor", f.itz_strength_factor},
+                                 std::pair<std::string, double>{"itz_modulus_factor", f.itz_modulus_factor}}) {
         if (!(v > 0.0 && std::isfinite(v)))
-            throw InputError(ctx.file, ctx.keys[std::string("paste.") + key].line,
-                             "key 'paste." + std::string(key) + "' = " + show(v) + " violates > 0");
+            throw InputError(ctx.file, ctx.keys["paste." + key].line,
+                             "key 'paste." + key + "' = " + show(v) + " violates > 0");
     }
     if (auto why = p.invalid_reason()) invalid(ctx, "paste", *why);
 }

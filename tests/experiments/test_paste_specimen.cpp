@@ -3,6 +3,7 @@
 // paste settings; bond families in the bonded cube specimen (sand-sand frictional, ITZ bonds
 // scaled, paste-paste bonds = [material]); the cube test of a paste specimen bitwise the same
 // for 1, 2 and 3 threads.
+#include "../input_files.hpp"
 #include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
 
@@ -26,21 +27,11 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-fs::path write(const fs::path& file, const std::string& text) {
-    std::ofstream(file) << text;
-    return file;
-}
+using test::write_file;
 
+/// load_cube_config must throw an InputError at `line` whose message contains every `parts`.
 void require_rejected(const fs::path& file, int line, std::initializer_list<std::string> parts) {
-    try {
-        (void)load_cube_config(file);
-        FAIL("accepted " << file);
-    } catch (const lab::InputError& e) {
-        INFO(e.what());
-        CHECK(e.line() == line);
-        CHECK_THAT(e.what(), Contains(file.string()));
-        for (const auto& p : parts) CHECK_THAT(e.what(), Contains(p));
-    }
+    test::require_input_error([&] { (void)load_cube_config(file); }, file, line, parts);
 }
 
 // A small explicit-paste specimen: sand 0.3-0.42 mm in a 1.3 mm cube, paste 0.12 mm.
@@ -79,31 +70,31 @@ TEST_CASE("paste config: the shipped paste cube reads the study's mix and the da
 TEST_CASE("paste config: bad input names the file, line and key", "[paste]") {
     const test::TempDir dir("paste-config");
     const fs::path file = dir.path / "c.toml";
-    std::ofstream(dir.path / "sand.csv") << "sieve_mm,passing_pct\n0.6,100\n0.3,50\n0.15,0\n";
+    write_file(dir.path / "sand.csv", "sieve_mm,passing_pct\n0.6,100\n0.3,50\n0.15,0\n");
     const std::string head = "[specimen]\nsieve_csv = \"sand.csv\"\n";
     SECTION("[paste] with parallel bonds") {
-        write(file, head + "[paste]\nmin_diameter_mm = 0.1\n");
+        write_file(file, head + "[paste]\nmin_diameter_mm = 0.1\n");
         require_rejected(file, 3, {"[paste]", "explicit_paste"});
     }
     SECTION("unknown representation") {
-        write(file, head + "representation = \"paste\"\n");
+        write_file(file, head + "representation = \"paste\"\n");
         require_rejected(file, 3, {"specimen.representation", "explicit_paste"});
     }
     SECTION("missing specific gravity (a sieve table has none)") {
-        write(file, head + "representation = \"explicit_paste\"\n[mix]\nwater_cement_ratio = 0.5\n");
+        write_file(file, head + "representation = \"explicit_paste\"\n[mix]\nwater_cement_ratio = 0.5\n");
         require_rejected(file, 3, {"mix.sand_specific_gravity", "expected"});
     }
     SECTION("a value out of range") {
-        write(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\n[paste]\n"
+        write_file(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\n[paste]\n"
                            "min_diameter_mm = 0.1\nmax_diameter_mm = 0.05\n");
         require_rejected(file, 8, {"paste.max_diameter_mm", ">= min_diameter"});
     }
     SECTION("a bad mix") {
-        write(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\nair_content = 0.7\n");
+        write_file(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\nair_content = 0.7\n");
         require_rejected(file, 6, {"mix.air_content", "[0, 0.5)"});
     }
     SECTION("sand_sand") {
-        write(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\n[paste]\nsand_sand = \"glued\"\n");
+        write_file(file, head + "representation = \"explicit_paste\"\n[mix]\nsand_specific_gravity = 2.64\n[paste]\nsand_sand = \"glued\"\n");
         require_rejected(file, 7, {"paste.sand_sand", "frictional"});
     }
 }
