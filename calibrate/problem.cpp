@@ -72,6 +72,17 @@ Method parse_method(const std::string& text, Context& ctx) {
                          "\": unknown solver (known: scaling, bobyqa, sbplx, cobyla, crs2, direct, ceres)");
 }
 
+// [calibration] edge_mm: the specimen edge of every run, replacing the base config's
+// genesis.edge_mm (the same base serves calibrations at several specimen sizes).
+void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
+    const int line = ctx.keys["calibration.edge_mm"].line;
+    if (!(edge > 0.0) || !std::isfinite(edge))
+        throw InputError(ctx.file, line, "key 'calibration.edge_mm' must be a positive cube edge [mm]");
+    base.specimen.genesis.edge = edge;
+    if (const auto why = base.specimen.invalid_reason())
+        throw InputError(ctx.file, line, "key 'calibration.edge_mm': " + *why);
+}
+
 void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem& p) {
     Section s(ctx, root, "calibration");
     fs::path base;
@@ -84,6 +95,8 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     p.seeds = read_seeds(s, "seeds", p.seeds);
     std::string bond_model;
     s.text("bond_model", bond_model);
+    double edge = 0.0;  // [m] 0: the base config's genesis.edge_mm
+    s.real("edge_mm", edge, 1e-3);
     s.finish();
     p.mode = parse_mode(mode, ctx);
     if (p.model != "dem" && p.model != "analytic")
@@ -101,6 +114,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
                                  exp::bond_model_names() + ")");
         p.base.material.bond.model = *model;
     }
+    if (ctx.keys["calibration.edge_mm"].line > 0) apply_edge(ctx, edge, p.base);
     if (p.sands.empty()) throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' is empty");
     const std::set<std::string> unique(p.sands.begin(), p.sands.end());
     if (unique.size() != p.sands.size())

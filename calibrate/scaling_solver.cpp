@@ -8,6 +8,7 @@
 //      (no extra runs);
 //   4. confirm: run the best θ with its rescaled E* and strengths; if E or peak still miss their
 //      prediction by more than the tolerance, rescale and run once more.
+#include <algorithm>
 #include <cmath>
 #include <nlopt.hpp>
 #include <sstream>
@@ -177,10 +178,11 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
                 opt.set_initial_step(std::vector<double>(n, 0.2));
                 opt.set_xtol_abs(ctx.problem.solver.tolerance);
                 opt.set_ftol_abs(std::max(noise, 1e-12));
-                opt.set_maxeval(evals);
+                opt.set_maxeval(evals + 1);  // + BOBYQA's first trial, x1 itself: served by the ledger
                 const std::vector<double> u1 = ctx.space.to_unit(e1.values);
                 std::vector<double> theta;
                 for (std::size_t k : idx.shape) theta.push_back(u1[k]);
+                const std::vector<double> theta1 = theta;  // optimize() overwrites theta
                 struct Data {
                     SolveContext* ctx;
                     const ScaleIndices* idx;
@@ -190,13 +192,18 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
                     double* best_predicted;
                     int reserve;
                     nlopt::opt* opt;
-                } data{&ctx, &idx, &u1, &tracker, &best_point, &best_predicted, reserve, &opt};
+                    const std::vector<double>* theta1;  ///< x1's shape coordinates (BOBYQA's first trial)
+                    const std::vector<double>* x1;      ///< x1's exact values
+                } data{&ctx, &idx, &u1, &tracker, &best_point, &best_predicted, reserve, &opt, &theta1, &e1.values};
                 opt.set_min_objective(
                     [](unsigned, const double* th, double*, void* d) -> double {
                         auto& D = *static_cast<Data*>(d);
                         std::vector<double> u = *D.u1;
                         for (std::size_t j = 0; j < D.idx->shape.size(); ++j) u[D.idx->shape[j]] = th[j];
-                        const std::vector<double> values = D.ctx->space.from_unit(u);
+                        // BOBYQA starts at x1: take its exact values (the unit-box round trip
+                        // moves the last bits), so the ledger serves the runs instead of repeating them.
+                        const bool at_x1 = std::equal(D.theta1->begin(), D.theta1->end(), th);
+                        const std::vector<double> values = at_x1 ? *D.x1 : D.ctx->space.from_unit(u);
                         if (D.ctx->evaluator.runs_needed({values}, D.ctx->sands) > D.ctx->evaluator.runs_remaining() - D.reserve) {
                             D.opt->force_stop();  // keep the confirmation's share of the budget
                             return HUGE_VAL;

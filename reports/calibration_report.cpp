@@ -223,6 +223,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"solver", to_string(p.solver.method)},
             {"sands", p.sands},
             {"packing_seeds", seeds},
+            {"specimen_edge_mm", p.base.specimen.genesis.edge * 1e3},
             {"lab_results", p.lab_results.string()},
             {"representative_lab_data", p.representative},
             {"lab_note", p.lab_note},
@@ -256,7 +257,8 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
     md << (sep == ", " ? ")" : "") << "\n"
        << "- sands: ";
     for (std::size_t s = 0; s < p.sands.size(); ++s) md << (s ? ", " : "") << p.sands[s];
-    md << "; packing seeds per sand: " << p.seeds.size() << " (the same packings for every parameter set)\n"
+    md << "; packing seeds per sand: " << p.seeds.size() << " (the same packings for every parameter set); specimen edge "
+       << fmt(p.base.specimen.genesis.edge * 1e3) << " mm\n"
        << "- DEM test runs: **" << r.runs_used << "** of a budget of " << p.solver.max_runs << " (" << r.runs_executed
        << " run now, " << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed); " << r.history.size()
        << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n"

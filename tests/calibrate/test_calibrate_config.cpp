@@ -6,6 +6,7 @@
 
 #include "calibrate/ledger.hpp"
 #include "calibrate/problem.hpp"
+#include "experiments/packing_cache.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 
@@ -55,6 +56,8 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
         {"log scale with lower 0", "", "[parameters.strength_cv]\nscale = \"log\"\nlower = 0.0\n", "needs lower > 0"},
         {"calibrate_on not a sand", "mode = \"study\"\ncalibrate_on = \"Ottawa\"\n", "", "is not one of calibration.sands"},
         {"bad seeds", "seeds = [1, 1]\n", "", "distinct seeds"},
+        {"edge under 3 x the largest grain", "edge_mm = 2.0\n", "", "key 'calibration.edge_mm': genesis.edge"},
+        {"edge not positive", "edge_mm = -3.5\n", "", "key 'calibration.edge_mm' must be a positive cube edge"},
     };
     for (const Case& c : cases) {
         DYNAMIC_SECTION(c.name) {
@@ -65,6 +68,18 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
                                                                         Contains(c.expected));
         }
     }
+}
+
+TEST_CASE("calibration.edge_mm replaces the base config's cube edge, and with it every packing", "[calibrate]") {
+    TempDir dir("cal-edge");
+    write_lab(dir.path);
+    const cal::CalibrationProblem base = cal::load_calibration_problem(test::write_problem(dir.path, "", "", "base.toml"));
+    const cal::CalibrationProblem big = cal::load_calibration_problem(test::write_problem(dir.path, "edge_mm = 3.5\n", "", "big.toml"));
+    CHECK(base.base.specimen.genesis.edge == Approx(2.5e-3));
+    CHECK(big.base.specimen.genesis.edge == Approx(3.5e-3));
+    // The packings (and so the ledger's model fingerprint) change with the edge.
+    const auto curve = exp::load_gradation(base.base);
+    CHECK(exp::packing_key(curve, base.base.specimen) != exp::packing_key(curve, big.base.specimen));
 }
 
 TEST_CASE("missing or inconsistent lab results are rejected", "[calibrate]") {
@@ -122,9 +137,11 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
             const cal::CalibrationProblem p = cal::load_calibration_problem(dir.path / name);
             CHECK(p.sands == std::vector<std::string>{"pre-blended", "Van Buren"});
             CHECK(p.solver.method == cal::Method::scaling);
-            CHECK(p.seeds.size() == 2);
+            const bool main_job = std::string(name) == "joint.toml";  // 3.5 mm, 3 seeds, strength cv fixed
+            CHECK(p.seeds.size() == (main_job ? 3u : 2u));
+            CHECK(p.base.specimen.genesis.edge == Approx(main_job ? 3.5e-3 : 2.5e-3));
             const cal::ParameterSpace space(p.parameters, p.base.material);
-            CHECK(space.size() == 4);  // E*, tensile strength, cohesion ratio, strength cv
+            CHECK(space.size() == (main_job ? 3u : 4u));  // E*, tensile strength, cohesion ratio (, strength cv)
             CHECK(space.index_of(cal::Role::stiffness_scale).has_value());
             CHECK(space.index_of(cal::Role::strength_scale).has_value());
         }
