@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_args.hpp"
 #include "bench/neighbor_bench.hpp"
 #include "core/openmp_policy.hpp"
 #include "core/parallel.hpp"
@@ -49,21 +50,14 @@ struct Options {
 
 template <class T>
 std::vector<T> parse_list(const std::string& s) {
-    std::vector<T> out;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ',')) out.push_back(static_cast<T>(std::stod(item)));
-    return out;
+    return bench::parse_number_list<T>(s, "list");
 }
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int k = 1; k < argc; ++k) {
-        const std::string a = argv[k];
-        auto value = [&]() -> std::string {
-            if (k + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-            return argv[++k];
-        };
+    for (bench::ArgReader args(argc, argv); args.next();) {
+        const std::string a = args.arg();
+        auto value = [&] { return args.value(); };
         if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value());
         else if (a == "--threads") o.threads = parse_list<int>(value());
         else if (a == "--steps") o.steps = std::stoll(value()), o.steps_given = true;

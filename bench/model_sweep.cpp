@@ -17,13 +17,12 @@
 //    "shape_index_d", "particles", "bonds", "broken", "steps", "wall_s", "particle_steps_per_s",
 //    "status"}
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bench/bench_args.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_test.hpp"
 #include "experiments/material_table.hpp"
@@ -47,20 +46,8 @@ struct Options {
     std::vector<std::uint64_t> seeds{1};
 };
 
-std::vector<std::string> split(const std::string& s, char sep) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    for (std::string item; std::getline(in, item, sep);)
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
-
-double number(const std::string& text, const std::string& what) {
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0') throw std::invalid_argument(what + ": '" + text + "' is not a number");
-    return v;
-}
+using bench::parse_number;
+using bench::split_list;
 
 const exp::MaterialParameter& row(const std::string& key) {
     const exp::MaterialParameter* p = exp::find_material_parameter(key);
@@ -70,30 +57,24 @@ const exp::MaterialParameter& row(const std::string& key) {
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int k = 1; k < argc; ++k) {
-        const std::string a = argv[k];
-        auto value = [&]() -> std::string {
-            if (k + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-            return argv[++k];
-        };
-        if (a == "--model") o.model = value();
+    for (bench::ArgReader args(argc, argv); args.next();) {
+        const std::string a = args.arg();
+        if (a == "--model") o.model = args.value();
         else if (a == "--set" || a == "--sweep") {
-            const std::string v = value();
+            const std::string v = args.value();
             const auto eq = v.find('=');
             if (eq == std::string::npos) throw std::invalid_argument(a + " " + v + ": expected key=value");
             const std::string key = v.substr(0, eq);
             (void)row(key);
-            if (a == "--set") o.sets.emplace_back(key, number(v.substr(eq + 1), a + " " + key));
+            if (a == "--set") o.sets.emplace_back(key, parse_number(v.substr(eq + 1), a + " " + key));
             else {
                 Sweep s{key, {}};
-                for (const std::string& x : split(v.substr(eq + 1), ',')) s.values.push_back(number(x, a + " " + key));
+                s.values = bench::parse_number_list<double>(v.substr(eq + 1), a + " " + key);
                 o.sweeps.push_back(s);
             }
-        } else if (a == "--sands") o.sands = split(value(), ',');
-        else if (a == "--seeds") {
-            o.seeds.clear();
-            for (const std::string& x : split(value(), ',')) o.seeds.push_back(static_cast<std::uint64_t>(number(x, a)));
-        } else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
+        } else if (a == "--sands") o.sands = split_list(args.value());
+        else if (a == "--seeds") o.seeds = bench::parse_number_list<std::uint64_t>(args.value(), a);
+        else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
         else throw std::invalid_argument("unknown argument '" + a + "'");
     }
     if (o.config.empty())

@@ -9,7 +9,12 @@
 //   soft bond    D += h ln(1 + (1 − γ²)/ζ)   (the bond's fracture energy over its elastic
 //                                              energy at σ̄c, models.md §1: 1 + (1 − γ²)/ζ)
 //   flat joint   D += h μ_r / 2              (frictional residual of broken elements)
-// with a per-sand h. It is exactly homogeneous (E ∝ E*, σ ∝ σ̄c, ε ∝ σ̄c/E*) like the DEM model. Seed noise: every output is multiplied by
+// with a per-sand h. The direct-tension test (CubeTest::tension) is linear to its peak:
+//   E_t = E (as in compression),  σt = σ̄c t_s (1 − r_s v),  εt = σt / E_t
+// with a per-sand t_s of 0.40-0.45, so σc/σt = p_s ρ^q_s / t_s ≈ 3 (as low as parallel-bond
+// specimens give, models.md). Cost: every run reports 1000 particles, 1 step and a nominal
+// wall time of kNominalWallSeconds (deterministic, so answers stay bitwise comparable).
+// It is exactly homogeneous (E ∝ E*, σ ∝ σ̄c, ε ∝ σ̄c/E*) like the DEM model. Seed noise: every output is multiplied by
 // 1 + noise·z with z a deterministic pseudo-normal draw from (sand, seed, output).
 #include <cmath>
 #include <cstdio>
@@ -26,6 +31,10 @@ struct SandCoefficients {
 };
 constexpr SandCoefficients kSands[] = {{0.90, 1.80, 0.35, 0.90, 1.20, 0.05, 0.25}, {0.75, 1.60, 0.25, 0.60, 0.80, 0.15, 0.12},
                                        {0.82, 1.70, 0.30, 0.75, 1.00, 0.10, 0.18}};
+
+constexpr double kNominalWallSeconds = 1e-3;  ///< [s] per run: the cost the stand-in reports
+
+constexpr double kTensionFactor[] = {0.45, 0.40, 0.42};  ///< t_s: σt / σ̄c before the cv term [-]
 
 /// The bond law's extra ductility in D (see the header); none for the parallel bond (and for a
 /// law the stand-in does not know).
@@ -45,12 +54,46 @@ double pseudo_normal(std::uint64_t sand, std::uint64_t seed, std::uint64_t outpu
 
 class AnalyticCubeModel final : public CubeModel {
 public:
-    AnalyticCubeModel(std::size_t sands, double noise, double diverge_above)
-        : sands_(sands), noise_(noise), diverge_above_(diverge_above) {}
+    AnalyticCubeModel(std::size_t sands, double noise, double diverge_above, CubeTest test)
+        : sands_(sands), noise_(noise), diverge_above_(diverge_above), test_(test) {}
 
     void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
 
     RunOutcome run(const RunRequest& q, double) const override {
+        RunOutcome out = test_ == CubeTest::tension ? tension(q) : compression(q);
+        if (out.ok()) out.wall_seconds = kNominalWallSeconds;
+        return out;
+    }
+
+    std::string fingerprint() const override {
+        // Still v1: the parallel bond's outputs did not change when the other laws' terms came;
+        // their runs differ from it in the material key (model and its parameters).
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "analytic stand-in v1; sands %zu; noise %a; diverge %a", sands_, noise_, diverge_above_);
+        return test_ == CubeTest::tension ? std::string(buf) + "; direct tension v1" : std::string(buf);
+    }
+
+private:
+    RunOutcome tension(const RunRequest& q) const {
+        const BondParams& b = q.material.bond;
+        const double v = b.tensile_strength_mean > 0.0 ? b.tensile_strength_std / b.tensile_strength_mean : 0.0;
+        auto noisy = [&](double x, std::uint64_t output) { return x * (1.0 + noise_ * pseudo_normal(q.sand, q.seed, output)); };
+        RunOutcome out;
+        out.particles = 1000;
+        out.steps = 1;
+        out.modulus_pa = noisy(q.material.contact.effective_modulus * kSands[q.sand % 3].k * (1.0 - 0.15 * v), 4);
+        out.peak_pa = noisy(b.tensile_strength_mean * kTensionFactor[q.sand % 3] * (1.0 - kSands[q.sand % 3].r * v), 5);
+        out.strain_at_peak = out.peak_pa / out.modulus_pa;
+        out.poisson = 0.15;
+        for (int i = 1; i <= 10; ++i) {
+            out.curve_strain.push_back(out.strain_at_peak * i / 10.0);
+            out.curve_stress_pa.push_back(out.peak_pa * i / 10.0);
+        }
+        out.status = RunStatus::ok;
+        return out;
+    }
+
+    RunOutcome compression(const RunRequest& q) const {
         const SandCoefficients& c = kSands[q.sand % 3];
         const BondParams& b = q.material.bond;
         const double estar = q.material.contact.effective_modulus;
@@ -81,23 +124,15 @@ public:
         return out;
     }
 
-    std::string fingerprint() const override {
-        // Still v1: the parallel bond's outputs did not change when the other laws' terms came;
-        // their runs differ from it in the material key (model and its parameters).
-        char buf[96];
-        std::snprintf(buf, sizeof buf, "analytic stand-in v1; sands %zu; noise %a; diverge %a", sands_, noise_, diverge_above_);
-        return buf;
-    }
-
-private:
     std::size_t sands_;
     double noise_, diverge_above_;
+    CubeTest test_;
 };
 
 }  // namespace
 
-std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise, double diverge_above_gpa) {
-    return std::make_unique<AnalyticCubeModel>(sands, noise, diverge_above_gpa);
+std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise, double diverge_above_gpa, CubeTest test) {
+    return std::make_unique<AnalyticCubeModel>(sands, noise, diverge_above_gpa, test);
 }
 
 }  // namespace gradem::cal

@@ -51,9 +51,9 @@ const Evaluation* CalibrationStage::evaluation_of(std::size_t sand) const {
     return nullptr;
 }
 
-std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem) {
-    if (problem.model == "analytic") return make_analytic_model(problem.sands.size());
-    return make_dem_model(problem.base, problem.sands);
+std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, CubeTest test) {
+    if (problem.model == "analytic") return make_analytic_model(problem.sands.size(), 0.003, 0.0, test);
+    return make_dem_model(problem.base, problem.sands, test);
 }
 
 std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model) {

@@ -51,8 +51,8 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
                                   const std::function<void(const std::string&)>& log = {},
                                   const std::function<void(const Progress&)>& progress = {});
 
-/// The model for a problem: DEM (model = "dem") or the analytic stand-in.
-std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem);
+/// The model for a problem: DEM (model = "dem") or the analytic stand-in, running `test`.
+std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, CubeTest test = CubeTest::compression);
 
 /// FNV-1a of the problem description and the model fingerprint: the ledger's identity.
 std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model);

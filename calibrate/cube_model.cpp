@@ -7,6 +7,8 @@
 
 namespace gradem::cal {
 
+const char* to_string(CubeTest t) { return t == CubeTest::tension ? "direct tension" : "compression"; }
+
 const char* to_string(RunStatus s) {
     switch (s) {
         case RunStatus::ok: return "ok";

@@ -17,6 +17,12 @@
 
 namespace gradem::cal {
 
+/// Which virtual test a model runs: the cube compression test (what the calibration fits) or
+/// the direct-tension test of the same specimen (experiments/tension_test.hpp; its outcome's
+/// peak is the tensile strength σt, its modulus the tensile chord modulus, tension positive).
+enum class CubeTest { compression, tension };
+const char* to_string(CubeTest t);
+
 struct RunRequest {
     std::size_t sand = 0;         ///< index into the problem's sands
     std::uint64_t seed = 1;       ///< packing seed (common random numbers: the same for every material)
@@ -59,12 +65,15 @@ public:
     [[nodiscard]] virtual std::string fingerprint() const = 0;
 };
 
-/// The real model for the named sands of the base cube config's dataset.
-std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands);
+/// The real model for the named sands of the base cube config's dataset. `test` tension: the
+/// direct-tension test with the [tension] table of base.file (InputError if it is bad).
+std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands,
+                                          CubeTest test = CubeTest::compression);
 
 /// The analytic stand-in (see analytic_model.cpp for its equations). `diverge_above_gpa` > 0
 /// makes every run with E* above it report a divergence (for the failure tests).
-std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise = 0.003, double diverge_above_gpa = 0.0);
+std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise = 0.003, double diverge_above_gpa = 0.0,
+                                               CubeTest test = CubeTest::compression);
 
 /// The exact text of the material's fields (hex floats), for keys and fingerprints.
 std::string material_key(const exp::MaterialParams& m);

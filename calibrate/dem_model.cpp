@@ -1,9 +1,12 @@
 // The real cube model: the base cube config's specimen and test, one cached packing per
-// (sand, seed), and exp::run_cube_test with the material of the request.
+// (sand, seed), and exp::run_cube_test with the material of the request - or, for
+// CubeTest::tension, exp::run_tension_test of the same packing (as `gradem tension` runs it:
+// the base config's [tension] table, its strain rate rule, the compression test's stop rules).
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -13,6 +16,7 @@
 #include "calibrate/thread_pool.hpp"
 #include "common/input_error.hpp"
 #include "experiments/packing_cache.hpp"
+#include "experiments/tension_config.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -36,7 +40,8 @@ void thin_curve(const exp::CubeTestResult& r, RunOutcome& out) {
 
 class DemCubeModel final : public CubeModel {
 public:
-    DemCubeModel(exp::CubeConfig base, const std::vector<std::string>& sands) : base_(std::move(base)) {
+    DemCubeModel(exp::CubeConfig base, const std::vector<std::string>& sands, CubeTest test) : base_(std::move(base)) {
+        if (test == CubeTest::tension) tension_ = exp::load_tension_config(base_);
         names_ = sands;
         for (const std::string& name : sands) {
             exp::CubeConfig c = base_;
@@ -90,11 +95,6 @@ public:
         const auto it = packings_.find({q.sand, q.seed});
         if (it == packings_.end()) throw std::logic_error("DemCubeModel::run: packing not prepared");
         const exp::Packing& packing = it->second;
-        exp::CubeTestSpec spec = base_.test;
-        spec.snapshot = {};
-        spec.loading.platen_friction = q.material.platen_friction;
-        spec.loading.strain_rate = base_.auto_strain_rate ? exp::quasi_static_strain_rate(packing, q.material)
-                                                          : base_.test.loading.strain_rate;
         const auto start = Clock::now();
         exp::ProgressCallback watchdog;
         if (timeout_s > 0.0)
@@ -104,7 +104,7 @@ public:
             };
         RunOutcome out;
         try {
-            const exp::CubeTestResult r = exp::run_cube_test(packing, q.material, spec, watchdog);
+            const exp::CubeTestResult r = tension_ ? run_tension(packing, q.material, watchdog) : run_compression(packing, q.material, watchdog);
             out.particles = static_cast<std::int64_t>(r.particles);
             out.bonds = static_cast<std::int64_t>(r.bonds);
             out.steps = r.test.steps;
@@ -116,6 +116,9 @@ public:
             if (r.diverged()) {
                 out.status = RunStatus::diverged;
                 out.reason = r.test.stop_reason;
+            } else if (tension_ && std::isfinite(out.peak_pa) && out.peak_pa > 0.0) {
+                out.status = RunStatus::ok;  // σt is what the tension test is run for; its modulus may be NaN
+                if (r.macro.status != lab::ReductionStatus::ok) out.reason = "tension curve partly reduced: " + r.macro.message;
             } else if (r.macro.status != lab::ReductionStatus::ok || !std::isfinite(out.modulus_pa)) {
                 out.status = RunStatus::failed;
                 out.reason = "curve not reducible: " + r.macro.message;
@@ -153,11 +156,36 @@ public:
           << "; ramp " << l.ramp_strain << "; stop " << l.stop_fraction << "; max " << l.max_strain << "; record "
           << l.record_interval << "; gauge " << base_.test.gauge_length_fraction << " " << base_.test.slab_fraction << " "
           << base_.test.core_fraction << "; settle " << base_.test.settle_ratio << " " << base_.test.max_settle_steps;
+        if (tension_)
+            f << "; direct tension v1 grip " << tension_->spec.grip_depth_fraction << " auto peak strain " << tension_->auto_peak_strain;
         return f.str();
     }
 
 private:
+    exp::CubeTestResult run_compression(const exp::Packing& packing, const exp::MaterialParams& material,
+                                        const exp::ProgressCallback& watchdog) const {
+        exp::CubeTestSpec spec = base_.test;
+        spec.snapshot = {};
+        spec.loading.platen_friction = material.platen_friction;
+        spec.loading.strain_rate = base_.auto_strain_rate ? exp::quasi_static_strain_rate(packing, material)
+                                                          : base_.test.loading.strain_rate;
+        return exp::run_cube_test(packing, material, spec, watchdog);
+    }
+
+    /// The tension test's result (its `cube` part: the grips' facts are not kept).
+    exp::CubeTestResult run_tension(const exp::Packing& packing, const exp::MaterialParams& material,
+                                    const exp::ProgressCallback& watchdog) const {
+        exp::CubeConfig config = base_;
+        config.material = material;
+        exp::TensionTestSpec spec = tension_->spec;
+        spec.test.snapshot = {};
+        spec.test.loading.platen_friction = material.platen_friction;
+        spec.test.loading.strain_rate = exp::tension_strain_rate(config, *tension_, packing);
+        return exp::run_tension_test(packing, material, spec, watchdog).cube;
+    }
+
     exp::CubeConfig base_;
+    std::optional<exp::TensionConfig> tension_;  ///< set: the model runs the direct-tension test
     std::vector<std::string> names_;
     std::vector<lab::GradationCurve> curves_;
     std::map<std::pair<std::size_t, std::uint64_t>, exp::Packing> packings_;
@@ -165,8 +193,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands) {
-    return std::make_unique<DemCubeModel>(base, sands);
+std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands, CubeTest test) {
+    return std::make_unique<DemCubeModel>(base, sands, test);
 }
 
 }  // namespace gradem::cal

@@ -261,4 +261,25 @@ std::int64_t Ledger::size() const {
     return s.step() == SQLITE_ROW ? sqlite3_column_int64(s.get(), 0) : 0;
 }
 
+std::vector<RunCost> read_run_costs(const fs::path& ledger_file) {
+    std::error_code ec;
+    if (!fs::exists(ledger_file, ec)) throw LedgerError(ledger_file.string() + ": ledger not found");
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(ledger_file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+        sqlite3_close(db);
+        throw LedgerError(ledger_file.string() + ": cannot open the ledger read-only");
+    }
+    std::vector<RunCost> out;
+    try {
+        Statement s(db, "SELECT sand, particles, steps, wall_seconds FROM runs WHERE status = 'ok' ORDER BY sequence, rowid", ledger_file);
+        while (s.step() == SQLITE_ROW)
+            out.push_back({s.column_text(0), sqlite3_column_int64(s.get(), 1), sqlite3_column_int64(s.get(), 2), s.column_real(3)});
+    } catch (...) {
+        sqlite3_close(db);
+        throw;
+    }
+    sqlite3_close(db);
+    return out;
+}
+
 }  // namespace gradem::cal

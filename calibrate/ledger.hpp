@@ -23,6 +23,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "calibrate/cube_model.hpp"
 #include "calibrate/run_executor.hpp"
@@ -45,6 +46,17 @@ const char* code_version();
 
 /// The ledger layout this build writes (meta schema_version; 1 when absent).
 inline constexpr int kLedgerSchemaVersion = 2;
+
+/// What one successful run of a ledger cost: its sand, particles, time steps and wall time.
+struct RunCost {
+    std::string sand;
+    std::int64_t particles = 0, steps = 0;
+    double wall_seconds = 0.0;  ///< [s], as measured where it ran (with the other runs in flight)
+};
+
+/// Every run of status ok in a ledger file, read-only, in the order they were recorded; throws
+/// LedgerError naming the file when it cannot be read as a ledger.
+std::vector<RunCost> read_run_costs(const std::filesystem::path& ledger_file);
 
 class Ledger {
 public:

@@ -168,7 +168,8 @@ struct CaseRuns {
 /// shared executor with the case's model among the StudyModels (the same model, the same
 /// ledger keys, the same outcomes).
 CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std::vector<double>>& points, const std::string& label,
-                       Ledger& ledger, const StudyExecution* execution, const std::function<void(const std::string&)>& say) {
+                       Ledger& ledger, const StudyExecution* execution, CubeTest test,
+                       const std::function<void(const std::string&)>& say) {
     const ParameterSpace space(problem.parameters, problem.base.material);
     std::vector<std::size_t> sands;
     for (std::size_t s = 0; s < problem.sands.size(); ++s) sands.push_back(s);
@@ -178,14 +179,14 @@ CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std:
         r.executed = evaluator.runs_executed(), r.from_ledger = evaluator.runs_from_ledger(), r.failed = evaluator.runs_failed();
         return r;
     };
-    if (execution) {
+    if (execution && test == CubeTest::compression) {
         const std::optional<std::size_t> k = execution->models.find(problem);
         if (!k) throw std::logic_error("study: a case that study_problems() did not list");
         CaseExecutor executor(execution->executor, execution->models.offset(*k));
         Evaluator evaluator(problem, space, executor, ledger, execution->models.model(*k).fingerprint());
         return evaluate(evaluator);
     }
-    auto model = make_model(problem);
+    auto model = make_model(problem, test);
     model->prepare(problem.seeds, problem.workers, say);
     Evaluator evaluator(problem, space, *model, ledger, model->fingerprint());
     return evaluate(evaluator);
@@ -194,10 +195,13 @@ CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std:
 }  // namespace
 
 std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::vector<std::vector<double>>& points,
-                                        const std::vector<std::string>& labels, const std::vector<double>& xs) {
+                                        const std::vector<std::string>& labels, const std::vector<double>& xs,
+                                        const CaseOptions& options) {
+    const std::vector<std::uint64_t> own_seeds = problem.seeds;
     problem = as_study_problem(std::move(problem), config_);
+    if (options.calibration_seeds) problem.seeds = own_seeds;
     const CaseRuns runs = evaluate_case(problem, points, labels.empty() ? "study" : labels.front(), *ledger_, execution_,
-                                        [this](const std::string& s) { say(s); });
+                                        options.test, [this](const std::string& s) { say(s); });
     const std::vector<Evaluation>& evals = runs.evals;
     executed_ += runs.executed;
     from_ledger_ += runs.from_ledger;
@@ -208,6 +212,7 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
         c.label = k < labels.size() ? labels[k] : "case " + std::to_string(k + 1);
         c.x = k < xs.size() ? xs[k] : 0.0;
         c.sands = problem.sands;
+        c.seeds = problem.seeds;
         c.runs.assign(problem.sands.size(), {});
         const std::size_t per_sand = problem.seeds.size();
         for (std::size_t r = 0; r < evals[k].runs.size(); ++r) c.runs[r / per_sand].push_back(evals[k].runs[r]);
@@ -223,8 +228,17 @@ StudyResult run_study(const StudyConfig& config, const std::function<void(const 
     const auto start = std::chrono::steady_clock::now();
     StudyResult result;
     result.config = config;
+    auto count_runs = [&result](const StudyRunner& runner) {
+        result.runs_executed = runner.executed();
+        result.runs_from_ledger = runner.from_ledger();
+        result.runs_failed = runner.failed();
+    };
     if (config.kind == StudyKind::model_form) {
-        run_model_form(config, result);
+        std::vector<CalibratedPoint> points;  // every summary checked before the ledger is opened
+        for (const fs::path& file : config.calibrations) points.push_back(load_calibrated_point(file));
+        StudyRunner runner(config, log, execution);
+        run_model_form(points, runner, result);
+        count_runs(runner);
     } else {
         const CalibratedPoint point = load_calibrated_point(config.calibration);
         result.calibration_summaries.push_back(config.calibration.string());
@@ -237,9 +251,7 @@ StudyResult run_study(const StudyConfig& config, const std::function<void(const 
             case StudyKind::sensitivity: run_sensitivity(point, runner, result); break;
             case StudyKind::model_form: break;
         }
-        result.runs_executed = runner.executed();
-        result.runs_from_ledger = runner.from_ledger();
-        result.runs_failed = runner.failed();
+        count_runs(runner);
     }
     result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

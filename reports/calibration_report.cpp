@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "calibrate/objective.hpp"
+#include "calibrate/target_tolerance.hpp"
 #include "common/atomic_file.hpp"
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"
@@ -18,14 +19,20 @@ using nlohmann::json;
 constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 using common::clock_text;
 
-constexpr double kMetTolerance = 0.05;  // a target counts as met within 5 % of the lab mean
-
 /// Display scale and unit of a quantity.
 double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
 const char* unit(Quantity q) { return q == Quantity::strain ? "-" : "MPa"; }
 const char* label(Quantity q) { return q == Quantity::modulus ? "chord modulus" : q == Quantity::peak ? "peak stress" : "strain at peak"; }
 
 std::string fmt(double v, int digits = 4) { return common::format_significant(v, digits); }
+
+/// "modulus and peak within 5 %, strain at peak within 10 %" (target_tolerance.hpp).
+std::string tolerances_text() {
+    const TargetTolerances& t = kTargetTolerances;
+    auto p = [](double v) { return common::format_significant(100.0 * v, 3) + " %"; };
+    if (t.modulus == t.peak) return "modulus and peak within " + p(t.modulus) + ", strain at peak within " + p(t.strain);
+    return "modulus within " + p(t.modulus) + ", peak within " + p(t.peak) + ", strain at peak within " + p(t.strain);
+}
 
 std::string pct(double v) {
     if (!std::isfinite(v)) return "-";
@@ -131,7 +138,7 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
 std::vector<std::string> unmet_statements(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<std::string> out;
     for (const TargetRow& r : target_rows(p, st)) {
-        if (!std::isfinite(r.rel_error) || std::fabs(r.rel_error) <= kMetTolerance) continue;
+        if (!std::isfinite(r.rel_error) || target_met(r.q, r.rel_error)) continue;
         std::ostringstream s;
         s << r.sand << " " << label(r.q) << " (" << r.role << "): simulated " << fmt(r.sim_mean * display(r.q)) << " vs lab "
           << fmt(r.lab.mean * display(r.q)) << (r.q == Quantity::strain ? "" : " MPa") << " (" << pct(r.rel_error) << ")";
@@ -168,7 +175,7 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
                            {"lab_mean", number(r.lab.mean * display(r.q))}, {"lab_std", number(r.lab.std * display(r.q))},
                            {"lab_n", r.lab.n}, {"sim_mean", number(r.sim_mean * display(r.q))},
                            {"sim_std", number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", number(r.rel_error)},
-                           {"z", number(r.z)}, {"met", std::isfinite(r.rel_error) && std::fabs(r.rel_error) <= kMetTolerance}});
+                           {"z", number(r.z)}, {"tolerance", kTargetTolerances.of(r.q)}, {"met", target_met(r.q, r.rel_error)}});
     const SolveResult& s = st.solution;
     const Uncertainty& u = st.uncertainty;
     json j = {{"label", st.label},
@@ -238,6 +245,8 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"parameters", stages.empty() ? json::array() : stages[0]["parameters"]},
             {"targets", all_targets},
             {"shape_index_d", all_d},
+            {"target_tolerances", {{"modulus", kTargetTolerances.modulus}, {"peak_stress", kTargetTolerances.peak},
+                                   {"strain_at_peak", kTargetTolerances.strain}, {"source", "issue 9: modulus and peak within 5 %, strain at peak within 10 %"}}},
             {"stages", stages}};
 }
 
@@ -316,9 +325,9 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
             md << "Uncertainty: " << u.note << "\n\n";
         }
         const auto unmet = unmet_statements(p, st);
-        if (unmet.empty()) md << "Every target is met within 5 % of the lab mean.\n\n";
+        if (unmet.empty()) md << "Every target is met (" << tolerances_text() << " of the lab mean).\n\n";
         else {
-            md << "**Targets not met within 5 %:**\n\n";
+            md << "**Targets not met (" << tolerances_text() << "):**\n\n";
             for (const auto& w : unmet) md << "- " << w << "\n";
             md << "\n";
         }

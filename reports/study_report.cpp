@@ -17,6 +17,12 @@ namespace {
 using nlohmann::json;
 constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
 
+/// The packing seed of a case's k-th run of a sand (the case's own, else the study's).
+std::uint64_t seed_of(const StudyResult& r, const StudyCase& c, std::size_t k) {
+    const std::vector<std::uint64_t>& seeds = c.seeds.empty() ? r.config.seeds : c.seeds;
+    return k < seeds.size() ? seeds[k] : 0;
+}
+
 json runs_json(const StudyResult& r) {
     json cases = json::array();
     for (const StudyCase& c : r.cases) {
@@ -25,7 +31,7 @@ json runs_json(const StudyResult& r) {
             json runs = json::array();
             for (std::size_t k = 0; k < c.runs[s].size(); ++k) {
                 const RunOutcome& o = c.runs[s][k];
-                runs.push_back({{"seed", k < r.config.seeds.size() ? r.config.seeds[k] : 0}, {"status", to_string(o.status)},
+                runs.push_back({{"seed", seed_of(r, c, k)}, {"status", to_string(o.status)},
                                 {"reason", o.reason}, {"modulus_mpa", number(o.modulus_pa * 1e-6)}, {"peak_mpa", number(o.peak_pa * 1e-6)},
                                 {"strain_at_peak", number(o.strain_at_peak)}, {"particles", o.particles}, {"bonds", o.bonds},
                                 {"steps", o.steps}, {"wall_seconds", o.wall_seconds}});
@@ -54,7 +60,8 @@ std::string markdown(const StudyResult& r) {
     md << "- calibration: ";
     for (std::size_t k = 0; k < r.calibration_summaries.size(); ++k) md << (k ? ", " : "") << r.calibration_summaries[k];
     if (r.config.kind != StudyKind::model_form) md << "\n- packing seeds per sand: " << r.config.seeds.size();
-    md << "\n- DEM runs: " << r.runs_executed << " run now, "
+    md << "\n- DEM runs" << (r.config.kind == StudyKind::model_form ? " (direct-tension tests for sigma_c/sigma_t, each calibration's seeds)" : "")
+       << ": " << r.runs_executed << " run now, "
        << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed; wall time " << common::clock_text(r.wall_seconds)
        << "\n\n## Answer\n\n";
     for (const std::string& v : r.verdict) md << "- " << v << "\n";
@@ -81,7 +88,7 @@ std::string runs_csv(const StudyResult& r) {
         for (std::size_t s = 0; s < c.sands.size(); ++s)
             for (std::size_t k = 0; k < c.runs[s].size(); ++k) {
                 const RunOutcome& o = c.runs[s][k];
-                csv << '"' << c.label << "\"," << c.x << ",\"" << c.sands[s] << "\"," << (k < r.config.seeds.size() ? r.config.seeds[k] : 0)
+                csv << '"' << c.label << "\"," << c.x << ",\"" << c.sands[s] << "\"," << seed_of(r, c, k)
                     << "," << to_string(o.status) << "," << o.modulus_pa * 1e-6 << "," << o.peak_pa * 1e-6 << "," << o.strain_at_peak
                     << "," << o.particles << "," << o.bonds << "," << o.steps << "," << o.wall_seconds << "\n";
             }

@@ -8,7 +8,7 @@ Figures per kind (the count is fixed, whatever the data, so the page's check sta
   resolution        1: mean ± seed std against the cube edge, converged edge marked
   fines_truncation  2: error against the particle ratio and against the wall-time ratio
   sensitivity       1: elasticity bars ± standard error, parameter × quantity, per sand
-  model_form        2: target errors per model; shape index D simulated vs lab
+  model_form        3: target errors per model; shape index D simulated vs lab; σc/σt and cost per cube test
 """
 
 import math
@@ -31,7 +31,7 @@ TITLES = {"gradation_effect": "does one parameter set reproduce the lab's differ
           "fines_truncation": "what does cutting the fines cost in accuracy?",
           "sensitivity": "which parameter moves which property?",
           "model_form": "which bond model fits the lab best?"}
-EXPECTED_FIGURES = {"gradation_effect": 2, "resolution": 1, "fines_truncation": 2, "sensitivity": 1, "model_form": 2}
+EXPECTED_FIGURES = {"gradation_effect": 2, "resolution": 1, "fines_truncation": 2, "sensitivity": 1, "model_form": 3}
 
 
 def build(out_dir):
@@ -55,7 +55,7 @@ def build(out_dir):
                     "says what the model does with them, not what the real sands do.")
     page.section("Answer", f"The study's question: {TITLES[kind]}")
     page.notes([str(v).replace(" -> ", " → ") for v in verdict] or ["the study gave no verdict (no successful runs?)"])
-    page.cards(run_cards(study, cases) if kind != "model_form" else model_cards(data))
+    page.cards(run_cards(study, cases) if kind != "model_form" else model_cards(study, data))
 
     FIGURES[kind](page, data, cases, path)
 
@@ -89,11 +89,16 @@ def run_cards(study, cases):
             ("wall time", clock(study.get("wall_seconds")), f"ledger {os.path.basename(str(study.get('ledger', '?')))}", "")]
 
 
-def model_cards(data):
+def model_cards(study, data):
     models = data.get("models") or []
+    runs = study.get("runs") or {}
+    failed = int(runs.get("failed", 0))
     return [("models compared", f"{len(models)}", "each from its own calibration's summary.json", ""),
-            ("DEM runs", f"{sum(int(m.get('runs') or 0) for m in models)}", "of those calibrations (this study runs none)", ""),
-            ("wall time", clock(sum(finite(m.get("wall_seconds")) for m in models)), "of those calibrations", "")]
+            ("DEM runs", f"{sum(int(m.get('runs') or 0) for m in models)}", "of those calibrations", ""),
+            ("wall time", clock(sum(finite(m.get("wall_seconds")) for m in models)), "of those calibrations", ""),
+            ("tension tests", f"{int(runs.get('executed_now', 0)) + int(runs.get('from_ledger', 0))}",
+             f"for σc/σt: {runs.get('executed_now', 0)} run now, {runs.get('from_ledger', 0)} from the ledger, {failed} failed",
+             "bad" if failed else "")]
 
 
 def runs_section(page, cases):
@@ -323,6 +328,7 @@ def sensitivity_figures(page, data, cases, path):
 def model_form_figures(page, data, cases, path):
     models = field(data, "models", path, list)
     names = [f"{m.get('model')} ({os.path.basename(os.path.dirname(str(m.get('summary', ''))))})" for m in models]
+    tolerances = data.get("target_tolerances") or {}
     sands = list(dict.fromkeys(s.get("sand") for m in models for s in m.get("sands") or []))
     page.section("The models side by side", "Each model's own calibration against the same lab targets.")
     fig, axes = new_figure(max(1, len(sands)), width=11.0, height=3.8)
@@ -335,14 +341,18 @@ def model_form_figures(page, data, cases, path):
             s = next((s for s in m.get("sands") or [] if s.get("sand") == sand), {})
             err = [100 * finite(s.get(f"{q.split('_')[0]}_error")) for q, _, _ in QUANTITIES]
             ax.bar(np.arange(3) - 0.4 + w * (k + 0.5), np.nan_to_num(err), width=w * 0.9, color=MODEL_COLORS[k % 5], label=label)
-        ax.axhspan(-5, 5, color="#009E73", alpha=0.12, lw=0)
+        for q, (key, _, _) in enumerate(QUANTITIES):  # each target's own tolerance (calibrate/target_tolerance.hpp)
+            tol = 100 * finite(tolerances.get(key, 0.05))
+            ax.fill_between([q - 0.45, q + 0.45], -tol, tol, color="#009E73", alpha=0.12, lw=0)
         ax.axhline(0, color="#5b6475", lw=1)
         ax.set_xticks(range(3), [n for _, n, _ in QUANTITIES])
         ax.set_ylabel("relative error [%]")
         ax.set_title(sand)
     axes[0].legend(loc="best")
     page.figure(to_svg(fig), "Target errors per model and sand",
-                "Relative error (simulated / lab − 1) of each target at each model's calibrated parameters; green band: ± 5 %.")
+                "Relative error (simulated / lab − 1) of each target at each model's calibrated parameters; green band: the "
+                "target's tolerance (" + ", ".join(f"{n} ± {fmt(100 * finite(tolerances.get(k, 0.05)), 3)} %"
+                                                   for k, n, _ in QUANTITIES) + ").")
     fig, (ax, bars) = new_figure(2, width=11.0, height=4.0)
     lo, hi = math.inf, -math.inf
     for k, (m, label) in enumerate(zip(models, names)):
@@ -373,6 +383,36 @@ def model_form_figures(page, data, cases, path):
                 "The shape index D = E·ε_peak / σ_peak (chord modulus over the secant modulus at the peak; 1 = linear up to the "
                 "peak) of the simulated and the lab means, per model (colour) and sand (marker); on the dotted line the "
                 "model reproduces the lab's curve shape. Right: the relative error of D per sand and model.")
+    ratio_and_cost_figure(page, models, names, sands)
+
+
+def ratio_and_cost_figure(page, models, names, sands):
+    """σc/σt per model and sand (the direct-tension test at the calibrated parameters) against
+    mortar's range, and the cost per cube test (particle-steps per second) of each calibration."""
+    fig, (ratio_ax, cost_ax) = new_figure(2, width=11.0, height=4.0)
+    w = 0.8 / max(1, len(models))
+    shown = False
+    for k, (m, label) in enumerate(zip(models, names)):
+        rows = [next((s for s in m.get("sands") or [] if s.get("sand") == sand), {}) for sand in sands]
+        x = np.arange(len(sands)) - 0.4 + w * (k + 0.5)
+        ratio = [finite(r.get("compressive_to_tensile_ratio")) for r in rows]
+        cost = [finite((r.get("cost") or {}).get("particle_steps_per_second")) for r in rows]
+        ratio_ax.bar(x, np.nan_to_num(ratio), width=w * 0.9, color=MODEL_COLORS[k % 5], label=label)
+        cost_ax.bar(x, np.nan_to_num(cost), width=w * 0.9, color=MODEL_COLORS[k % 5], label=label)
+        shown = shown or any(v == v for v in ratio + cost)
+    ratio_ax.axhspan(8, 12, color="#5b6475", alpha=0.12, lw=0, label="mortar: about 8–12")
+    for ax, title, unit in ((ratio_ax, "σc / σt", "σc / σt [–]"), (cost_ax, "Cost per cube test", "particle-steps per second [1/s]")):
+        ax.set_xticks(range(len(sands)), sands)
+        ax.set_ylabel(unit)
+        ax.set_title(title)
+    ratio_ax.legend(loc="best", fontsize=8)
+    if not shown:
+        message_panel(cost_ax, "no tension runs or ledger costs recorded")
+    page.figure(to_svg(fig), "Compressive over tensile strength, and cost per cube test",
+                "Left: σc/σt per model (colour) and sand, the calibrated mean compressive peak over the mean tensile strength "
+                "of the direct-tension test of the same packings at the calibrated parameters; grey band: mortar's usual 8–12. "
+                "Right: particles × time steps per wall second of the calibration's compression runs (from its ledger; "
+                "wall time with the calibration's other runs in flight, so machine load shows).")
 
 
 FIGURES = {"gradation_effect": gradation_figures, "resolution": resolution_figures, "fines_truncation": truncation_figures,

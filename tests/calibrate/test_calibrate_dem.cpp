@@ -1,8 +1,11 @@
 // The DEM twin experiment (tagged slow): synthetic lab targets made by gradem's own cube test
-// at known parameters on other packing seeds; the scaling path must recover them.
+// at known parameters on other packing seeds; the scaling path must recover them. And the DEM
+// model's other test: the direct-tension test (what `gradem study` model_form runs for σc/σt).
 #include <catch2/catch.hpp>
 
 #include "calibrate_fixture.hpp"
+#include "experiments/packing_cache.hpp"
+#include "experiments/tension_config.hpp"
 #include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;
@@ -96,4 +99,49 @@ TEST_CASE("explicit paste: a tiny paste calibration runs end to end and moves to
     const double got = r.stages.at(0).solution.best.at(0);  // E* [GPa]
     INFO("E* from 11 GPa towards 15 GPa: " << got);
     CHECK(std::fabs(got - 15.0) < std::fabs(11.0 - 15.0));
+}
+
+TEST_CASE("DEM tension model: the direct-tension test of `gradem tension` on the cached packing, own fingerprint",
+          "[calibrate][tension]") {
+    // A 1.6 mm cube of Van Buren grains 0.3-0.42 mm (a few hundred grains).
+    TempDir dir("cal-dem-tension");
+    const std::string study = (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string();
+    const std::string cube_text = "[specimen]\ndataset = \"" + study + "\"\nsand = \"Van Buren\"\n"
+                                  "[size_rule]\nmin_diameter_mm = 0.3\nmax_diameter_mm = 0.42\n"
+                                  "[genesis]\nedge_mm = 1.6\ntarget_solid_fraction = 0.5\n"
+                                  "[material]\neffective_modulus_gpa = 11.0\ntensile_strength_mpa = 9.0\ncohesion_mpa = 18.0\n"
+                                  "[test]\nstrain_rate_per_s = \"auto\"\nmax_settle_steps = 200\n"
+                                  "[output]\ndir = \"out\"\ncache_dir = \"cache\"\n";
+    test::write_text(dir.path / "base.toml", cube_text + "[tension]\ngrip_depth_fraction = 0.15\n");
+    const exp::CubeConfig cube = exp::load_cube_config(dir.path / "base.toml");
+
+    auto compression = cal::make_dem_model(cube, {"Van Buren"});
+    auto tension = cal::make_dem_model(cube, {"Van Buren"}, cal::CubeTest::tension);
+    compression->prepare({1}, 1, {});
+    tension->prepare({1}, 1, {});  // the same cached packing
+    CHECK(tension->fingerprint() != compression->fingerprint());
+    CHECK_THAT(tension->fingerprint(), Catch::StartsWith(compression->fingerprint()) && Catch::Contains("direct tension"));
+
+    const cal::RunOutcome t = tension->run({0, 1, cube.material}, 0.0);
+    const cal::RunOutcome c = compression->run({0, 1, cube.material}, 0.0);
+    INFO("sigma_t " << t.peak_pa << " Pa, sigma_c " << c.peak_pa << " Pa; " << t.reason);
+    REQUIRE(t.ok());
+    REQUIRE(c.ok());
+    CHECK(t.particles == c.particles);
+    CHECK(t.peak_pa > 0.0);
+    CHECK(t.peak_pa < c.peak_pa);  // bonded particles: tensile strength below the compressive
+
+    // The same test run directly, as `gradem tension` runs it: the same σt, bitwise.
+    const exp::Packing packing = exp::load_or_generate(exp::load_gradation(cube), cube.specimen, cube.cache_dir);
+    const exp::TensionConfig tc = exp::load_tension_config(cube);
+    exp::TensionTestSpec spec = tc.spec;
+    spec.test.loading.strain_rate = exp::tension_strain_rate(cube, tc, packing);
+    const exp::TensionTestResult direct = exp::run_tension_test(packing, cube.material, spec);
+    CHECK(direct.cube.macro.peak_stress_pa == t.peak_pa);
+    CHECK(direct.cube.macro.strain_at_peak == t.strain_at_peak);
+
+    // A bad [tension] table is the config's error, before anything runs.
+    test::write_text(dir.path / "bad.toml", cube_text + "[tension]\ngrip_depth_fraction = 0.9\n");
+    CHECK_THROWS_WITH(cal::make_dem_model(exp::load_cube_config(dir.path / "bad.toml"), {"Van Buren"}, cal::CubeTest::tension),
+                      Catch::Contains("bad.toml") && Catch::Contains("tension.grip_depth_fraction"));
 }

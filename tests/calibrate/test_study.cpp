@@ -1,11 +1,13 @@
 // `gradem study` on the analytic stand-in: the kinds' numbers against the stand-in's closed
 // form, resume from the ledger, and the bad inputs of the study files.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
 
 #include "calibrate/run_executor.hpp"
 #include "calibrate/study.hpp"
+#include "calibrate/study_kinds.hpp"
 #include "calibrate/study_models.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
@@ -172,15 +174,73 @@ TEST_CASE("study on a shared executor: each case's sands routed to its model, th
             }
 }
 
-TEST_CASE("study: model_form tabulates calibrations with their shape index", "[calibrate][study]") {
+TEST_CASE("study: model_form tabulates calibrations with their shape index, sigma_c/sigma_t and cost; resumes",
+          "[calibrate][study]") {
     TempDir dir("study-model-form");
     const fs::path summary = calibrated_summary(dir.path);
     const fs::path toml = write_study(dir.path, "kind = \"model_form\"\ncalibrations = [\"" + summary.string() + "\"]");
     const cal::StudyResult r = cal::run_study(cal::load_study_config(toml));
     REQUIRE(r.data["models"].size() == 1);
-    const auto& sand = r.data["models"][0]["sands"][0];
-    CHECK(sand["shape_index_lab"].get<double>() > 0.5);
-    CHECK(r.runs_executed == 0);
+    const auto& model = r.data["models"][0];
+    CHECK(model["sands"][0]["shape_index_lab"].get<double>() > 0.5);
+    // The tension tests: the calibration's sands x its seeds (1, 2), at its calibrated parameters.
+    CHECK(r.runs_executed == 4);
+    CHECK(r.runs_failed == 0);
+
+    // Oracle: σc/σt = the summary's simulated peak / the stand-in's tensile strength at the
+    // calibrated material, seed mean; cost: particle-steps/s x wall s/run = particles x steps
+    // of a stand-in run (1000 x 1).
+    const cal::CalibratedPoint cp = cal::load_calibrated_point(summary);
+    const exp::MaterialParams m = cal::ParameterSpace(cp.problem.parameters, cp.problem.base.material).material(cp.values);
+    const auto tension = cal::make_analytic_model(kSands.size(), 0.003, 0.0, cal::CubeTest::tension);
+    nlohmann::json sj;
+    std::ifstream(summary) >> sj;
+    for (std::size_t s = 0; s < kSands.size(); ++s) {
+        INFO(kSands[s]);
+        const auto& row = model["sands"][s];
+        const double sigma_t = 0.5 * (tension->run({s, 1, m}, 0.0).peak_pa + tension->run({s, 2, m}, 0.0).peak_pa);
+        double sigma_c = 0.0;
+        for (const auto& t : sj["targets"])
+            if (t["sand"] == kSands[s] && t["quantity"] == "peak_stress") sigma_c = t["sim_mean"].get<double>() * 1e6;
+        REQUIRE(sigma_c > 0.0);
+        CHECK(row["tensile_strength_mpa"]["n"] == 2);
+        CHECK(row["tensile_strength_mpa"]["mean"].get<double>() == Approx(sigma_t * 1e-6).epsilon(1e-12));
+        CHECK(row["compressive_to_tensile_ratio"].get<double>() == Approx(sigma_c / sigma_t).epsilon(1e-12));
+        const auto& cost = row["cost"];
+        CHECK(cost["runs"].get<int>() > 0);
+        REQUIRE(cost["wall_seconds_per_run"].is_number());
+        REQUIRE(cost["particle_steps_per_second"].is_number());
+        CHECK(cost["wall_seconds_per_run"].get<double>() > 0.0);
+        CHECK(cost["particle_steps_per_second"].get<double>() * cost["wall_seconds_per_run"].get<double>() == Approx(1000.0));
+        CHECK(row["targets_met"].get<int>() >= 0);
+    }
+    // The table and the written files carry the new columns.
+    const auto& header = r.tables.front().header;
+    CHECK(std::find(header.begin(), header.end(), "sigma_c/sigma_t") != header.end());
+    CHECK(std::find(header.begin(), header.end(), "particle-steps/s") != header.end());
+    cal::write_study_outputs(r);
+    nlohmann::json written;
+    std::ifstream(dir.path / "study-out" / "study.json") >> written;
+    CHECK(written["data"]["models"][0]["sands"][1]["compressive_to_tensile_ratio"].is_number());
+
+    // Resumed: the tension tests come from the study's ledger, with the same answer.
+    const cal::StudyResult again = cal::run_study(cal::load_study_config(toml));
+    CHECK(again.runs_executed == 0);
+    CHECK(again.runs_from_ledger == 4);
+    CHECK(again.data["models"][0]["sands"][0]["compressive_to_tensile_ratio"] == model["sands"][0]["compressive_to_tensile_ratio"]);
+}
+
+TEST_CASE("study: sigma_c/sigma_t and cost per cube test from known inputs", "[calibrate][study]") {
+    CHECK(cal::compressive_to_tensile_ratio(24e6, {3e6, 0.2e6, 2}) == Approx(8.0).epsilon(1e-15));
+    CHECK(std::isnan(cal::compressive_to_tensile_ratio(24e6, {0.0, 0.0, 0})));  // no successful tension run
+    CHECK(std::isnan(cal::compressive_to_tensile_ratio(std::nan(""), {3e6, 0.2e6, 2})));
+    const std::vector<cal::RunCost> runs = {{"a", 100, 10, 2.0}, {"a", 200, 10, 3.0}, {"b", 50, 4, 1.0}, {"a", 100, 10, 0.0}};
+    const cal::RunCostSummary a = cal::summarise_costs(runs, "a");  // the run without a wall time is left out
+    CHECK(a.runs == 2);
+    CHECK(a.mean_wall_seconds == Approx(2.5));
+    CHECK(a.particle_steps_per_second == Approx((100.0 * 10 + 200.0 * 10) / 5.0));
+    CHECK(cal::summarise_costs(runs, "b").particle_steps_per_second == Approx(200.0));
+    CHECK(std::isnan(cal::summarise_costs(runs, "c").mean_wall_seconds));
 }
 
 TEST_CASE("study: bad study files are refused naming the file, key and rule", "[calibrate][study][errors]") {

@@ -26,7 +26,7 @@ import tempfile
 SKIP = 77
 EXPECTED_FIGURES = {"lab": 3, "compress": 4, "calibrate": 4}
 # figures of the study report per study kind (reports/html/study_report.py)
-STUDY_FIGURES = {"gradation_effect": 2, "sensitivity": 1, "resolution": 1, "fines_truncation": 2, "model_form": 2}
+STUDY_FIGURES = {"gradation_effect": 2, "sensitivity": 1, "resolution": 1, "fines_truncation": 2, "model_form": 3}
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync", "--hide-scrollbars",
                   "--host-resolver-rules=MAP * ~NOTFOUND", "--enable-logging=stderr", "--v=0"]
