@@ -284,6 +284,27 @@ TEST_CASE("the shipped explicit-paste calibration config frees the paste bond st
     const cal::ParameterSpace space(p.parameters, p.base.material);
     std::vector<std::string> free;
     for (std::size_t k = 0; k < space.size(); ++k) free.push_back(space.free(k).name);
-    CHECK(free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"});
+    CHECK(free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio"});  // cv fixed
     CHECK_FALSE(space.material(space.start()).invalid_reason().has_value());
+
+    // Its parallel-bond twin: the same sands, edge, seeds, free parameters, targets and solver.
+    std::string twin_text = bytes(root / "calibrate" / "configs" / "joint_paste_pb.toml");
+    std::string quoted_pb_base = "\"";
+    quoted_pb_base += test::calibration_base_config().string();
+    quoted_pb_base += "\"";
+    twin_text = replace_once(twin_text, "\"../../experiments/configs/calibration_cube.toml\"", quoted_pb_base);
+    twin_text = replace_once(twin_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+    test::write_text(dir.path / "joint_paste_pb.toml", twin_text);
+    const cal::CalibrationProblem twin = cal::load_calibration_problem(dir.path / "joint_paste_pb.toml");
+    CHECK(twin.base.representation == "parallel_bonds");
+    CHECK(twin.sands == p.sands);
+    CHECK(twin.seeds == p.seeds);
+    CHECK(twin.base.specimen.genesis.edge == p.base.specimen.genesis.edge);
+    CHECK(twin.solver.method == p.solver.method);
+    CHECK(twin.solver.max_runs == p.solver.max_runs);
+    CHECK(twin.weights.strain == p.weights.strain);
+    const cal::ParameterSpace twin_space(twin.parameters, twin.base.material);
+    std::vector<std::string> twin_free;
+    for (std::size_t k = 0; k < twin_space.size(); ++k) twin_free.push_back(twin_space.free(k).name);
+    CHECK(twin_free == free);
 }
