@@ -26,9 +26,13 @@ double output_of(const RunOutcome& r, Quantity q) {
 }  // namespace
 
 // A property has converged at case k when every later step changes its mean by less than the
-// seed standard deviation of the two cases it joins (the noise a user sees at one size).
+// seed standard deviation of the two cases it joins (the noise a user sees at one size), or by
+// less than study.tolerance × the mean (a change the user has said does not matter: as the
+// cubes grow the seed spread shrinks below any change worth a bigger cube).
 void summarise_convergence(StudyResult& result) {
     const auto& cases = result.cases;
+    const double tolerance = result.config.tolerance;
+    const std::string criterion = tolerance > 0.0 ? "the seed spread or " + fmt_num(100.0 * tolerance) + " %" : "the seed spread";
     StudyTable t{"Convergence with the cube edge", {"sand", "property", "converged from", "last change", "seed std there"}, {}};
     json conv = json::array();
     for (std::size_t s = 0; s < cases.front().sands.size(); ++s)
@@ -38,8 +42,9 @@ void summarise_convergence(StudyResult& result) {
             for (std::size_t k = cases.size(); k-- > 1;) {
                 const Sample a = cases[k - 1].sample(s, q), b = cases[k].sample(s, q);
                 const double change = std::fabs(b.mean - a.mean);
-                const double noise = std::max(a.std, b.std);
-                if (k == cases.size() - 1) last_change = change / std::fabs(b.mean), last_std = noise / std::fabs(b.mean);
+                const double seed_std = std::max(a.std, b.std);
+                const double noise = std::max(seed_std, tolerance * std::fabs(b.mean));
+                if (k == cases.size() - 1) last_change = change / std::fabs(b.mean), last_std = seed_std / std::fabs(b.mean);
                 if (!(change < noise)) break;
                 from = k - 1;
             }
@@ -49,11 +54,11 @@ void summarise_convergence(StudyResult& result) {
                                fmt_num(100.0 * last_std, 3) + " %"}});
             conv.push_back({{"sand", cases.front().sands[s]}, {"quantity", to_string(q)}, {"converged", converged},
                             {"from_x", converged ? json(cases[from].x) : json(nullptr)}, {"last_relative_change", number(last_change)},
-                            {"relative_seed_std", number(last_std)}});
+                            {"relative_seed_std", number(last_std)}, {"tolerance", tolerance}});
             if (q != Quantity::strain)
                 result.verdict.push_back(cases.front().sands[s] + ", " + label(q) + ": " +
-                                         (converged ? "changes less than the seed spread from " + at + " on"
-                                                    : "still changes more than the seed spread at the largest edge"));
+                                         (converged ? "changes less than " + criterion + " from " + at + " on"
+                                                    : "still changes more than " + criterion + " at the largest edge"));
         }
     result.tables.push_back(t);
     result.data["convergence"] = conv;

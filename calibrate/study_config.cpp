@@ -77,6 +77,7 @@ void read_study(Context& ctx, const toml::table& root, StudyConfig& c) {
     const auto mins = read_list<double>(s, "min_diameters_mm", "a non-empty array of positive numbers [mm]", positive_number);
     c.parameters = read_list<std::string>(s, "parameters", "an array of parameter names", text_item);
     s.real("step", c.step);
+    s.real("tolerance", c.tolerance);
     s.finish();
     if (kind.empty()) throw InputError(ctx.file, 0, "key 'study.kind' is required");
     c.kind = parse_kind(kind, ctx);
@@ -94,8 +95,12 @@ void read_study(Context& ctx, const toml::table& root, StudyConfig& c) {
     if (c.kind == StudyKind::resolution) {
         if (edges.size() < 2) throw InputError(ctx.file, line("edges_mm"), "key 'study.edges_mm' needs at least two cube edges [mm]");
         c.sweep_mm = edges;
+        if (!(c.tolerance >= 0.0 && c.tolerance < 1.0))
+            throw InputError(ctx.file, line("tolerance"), "key 'study.tolerance' must be a relative change in [0, 1)");
     } else if (!edges.empty()) {
         throw InputError(ctx.file, line("edges_mm"), "key 'study.edges_mm' belongs to kind \"resolution\"");
+    } else if (line("tolerance") > 0) {
+        throw InputError(ctx.file, line("tolerance"), "key 'study.tolerance' belongs to kind \"resolution\"");
     }
     if (c.kind == StudyKind::fines_truncation) {
         if (mins.size() < 2)

@@ -4,7 +4,7 @@
 //
 //   [study]   kind, calibration (a calibration's summary.json: the parameters studied and,
 //             through its config, the base cube, sands and lab targets), seeds, and the kind's
-//             own keys: edges_mm (resolution), min_diameters_mm (fines_truncation),
+//             own keys: edges_mm + tolerance (resolution), min_diameters_mm (fines_truncation),
 //             parameters + step (sensitivity), calibrations (model_form)
 //   [run]     workers, timeout_s
 //   [output]  dir, ledger
@@ -13,7 +13,7 @@
 //   gradation_effect  the calibrated parameters on every sand over the seeds: does the
 //                     simulated difference between the sands match the lab's (95 % intervals)?
 //   resolution        cube edge sweep: mean and spread per size, the size beyond which the
-//                     properties change less than their seed spread
+//                     properties change less than their seed spread (or than `tolerance`)
 //   fines_truncation  smallest kept grain sweep: cost (particles, wall time) against the
 //                     change from the finest case
 //   sensitivity       one-at-a-time elasticities d ln(property) / d ln(parameter), with seeds
@@ -38,6 +38,8 @@ struct StudyConfig {
     std::vector<double> sweep_mm;                      ///< edges (resolution) or min diameters (fines) [mm]
     std::vector<std::string> parameters;               ///< sensitivity: names (empty: every free one)
     double step = 0.10;                                ///< sensitivity: relative step of each parameter
+    double tolerance = 0.0;                            ///< resolution: a change below this relative size counts
+                                                       ///< as converged even where the seed spread is smaller
     int workers = 2;
     double timeout_s = 600.0;
     std::filesystem::path out_dir, ledger;

@@ -258,6 +258,10 @@ TEST_CASE("study: bad study files are refused naming the file, key and rule", "[
     CHECK_THAT(error_of(write_study(dir.path, "kind = \"sideways\"\n" + cal_key)), Catch::Contains("key 'study.kind' = \"sideways\""));
     CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = [2.5, 3.0]\nmin_diameters_mm = [0.1, 0.2]")),
                Catch::Contains("belongs to kind \"fines_truncation\""));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = [2.5, 3.0]\ntolerance = 1.5")),
+               Catch::Contains("key 'study.tolerance' must be a relative change in [0, 1)"));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"gradation_effect\"\n" + cal_key + "tolerance = 0.02")),
+               Catch::Contains("key 'study.tolerance' belongs to kind \"resolution\""));
     // A summary of another dataset: its lab results are not those of its config any more.
     nlohmann::json j;
     std::ifstream(summary) >> j;
@@ -266,4 +270,54 @@ TEST_CASE("study: bad study files are refused naming the file, key and rule", "[
     CHECK_THAT(error_of(write_study(dir.path, "kind = \"gradation_effect\"\ncalibration = \"" + (dir.path / "other.json").string() + "\"")),
                Catch::Contains("other.json") && Catch::Contains("belongs to another dataset"));
     CHECK_FALSE(fs::exists(dir.path / "study-out" / "study.json"));
+}
+
+namespace {
+
+// A resolution case whose one sand has the given moduli per seed [Pa] (peak and strain: 1).
+cal::StudyCase edge_case(double edge_mm, const std::vector<double>& moduli) {
+    cal::StudyCase c;
+    c.label = "edge " + std::to_string(edge_mm);
+    c.x = edge_mm;
+    c.sands = {"pre-blended"};
+    c.runs.resize(1);
+    for (double e : moduli) {
+        cal::RunOutcome r;
+        r.status = cal::RunStatus::ok;
+        r.modulus_pa = e, r.peak_pa = 1.0, r.strain_at_peak = 1.0;
+        c.runs[0].push_back(r);
+        c.seeds.push_back(c.seeds.size() + 1);
+    }
+    return c;
+}
+
+nlohmann::json modulus_convergence(double tolerance) {
+    cal::StudyResult result;
+    result.config.kind = cal::StudyKind::resolution;
+    result.config.tolerance = tolerance;
+    // Means 100, 110, 113, 114.5 with a seed std of 1 (the last steps: 2.7 %, 1.3 %).
+    result.cases = {edge_case(2.5, {99, 100, 101}), edge_case(3.5, {109, 110, 111}), edge_case(5.0, {112, 113, 114}),
+                    edge_case(6.0, {113.5, 114.5, 115.5})};
+    cal::summarise_convergence(result);
+    for (const auto& row : result.data["convergence"])
+        if (row["quantity"] == "modulus") return row;
+    FAIL("no modulus row");
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("resolution: converged where later changes stay under the seed spread, or under study.tolerance",
+          "[calibrate][study]") {
+    // Every step (10, 3, 1.5) exceeds the seed std (1): not converged within the sweep.
+    const nlohmann::json strict = modulus_convergence(0.0);
+    CHECK_FALSE(strict["converged"].get<bool>());
+    CHECK(strict["last_relative_change"].get<double>() == Approx(1.5 / 114.5));
+    CHECK(strict["relative_seed_std"].get<double>() == Approx(1.0 / 114.5));
+    // 2 %: the last step (1.3 %) is under it, the one before (2.7 %) is not -> from 5 mm on.
+    const nlohmann::json two_percent = modulus_convergence(0.02);
+    CHECK(two_percent["converged"].get<bool>());
+    CHECK(two_percent["from_x"].get<double>() == 5.0);
+    // 3 %: both last steps are under it -> from 3.5 mm on.
+    CHECK(modulus_convergence(0.03)["from_x"].get<double>() == 3.5);
 }
