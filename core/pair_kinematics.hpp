@@ -37,29 +37,36 @@ struct PairState {
 
 /// Kinematics of pair (A, B) for a step of length dt [s].
 inline PairKinematics pair_kinematics(const PairState& s, double dt) {
-    PairKinematics k;
+    // Locals first, one aggregate at the end: no zero-fill of the 200-byte result before the
+    // fields are written (the compiler emitted a rep stos for it; issue 10).
     const Vec3 d = s.xb - s.xa;
     const double dist = norm(d);
-    k.normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0};
+    const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0};
     const Vec3 d_prev = d - dt * (s.vb - s.va);
     const double dist_prev = norm(d_prev);
-    k.previous_normal = dist_prev > 0.0 ? (1.0 / dist_prev) * d_prev : k.normal;
-    k.tilt = cross(k.previous_normal, k.normal);
-    k.gap = dist - s.ra - s.rb;
-    k.arm_a = (s.ra + 0.5 * k.gap) * k.normal;
-    k.arm_b = k.arm_a - d;
+    const Vec3 previous_normal = dist_prev > 0.0 ? (1.0 / dist_prev) * d_prev : normal;
+    const double gap = dist - s.ra - s.rb;
+    const Vec3 arm_a = (s.ra + 0.5 * gap) * normal;
     // Spin terms use mid-step lever arms (from the mean of the old and new normals), so the
     // increment is second-order accurate: a rigid rotation gives O(theta^3) per step, not O(theta^2).
-    const Vec3 arm_a_mid = (s.ra + 0.5 * k.gap) * (0.5 * (k.normal + k.previous_normal));
+    const Vec3 arm_a_mid = (s.ra + 0.5 * gap) * (0.5 * (normal + previous_normal));
     const Vec3 arm_b_mid = arm_a_mid - 0.5 * (d + d_prev);
     const Vec3 du = dt * ((s.vb + cross(s.wb, arm_b_mid)) - (s.va + cross(s.wa, arm_a_mid)));
-    k.du_shear = du - dot(du, k.normal) * k.normal;
-    k.du_normal = dist - dist_prev;
     const Vec3 dtheta = dt * (s.wb - s.wa);
-    k.twist_angle = dot(dtheta, k.normal);
-    k.bend_angle = dtheta - k.twist_angle * k.normal;
-    k.mean_twist = 0.5 * dt * dot(s.wa + s.wb, k.normal);
-    return k;
+    const double twist_angle = dot(dtheta, normal);
+    return PairKinematics{
+        .normal = normal,
+        .previous_normal = previous_normal,
+        .tilt = cross(previous_normal, normal),
+        .gap = gap,
+        .arm_a = arm_a,
+        .arm_b = arm_a - d,
+        .du_shear = du - dot(du, normal) * normal,
+        .du_normal = dist - dist_prev,
+        .twist_angle = twist_angle,
+        .bend_angle = dtheta - twist_angle * normal,
+        .mean_twist = 0.5 * dt * dot(s.wa + s.wb, normal),
+    };
 }
 
 /// Carries a vector stored in the old contact plane into the new one: small rotation about

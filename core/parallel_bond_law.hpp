@@ -40,21 +40,20 @@ struct ParallelBondLaw {
     static BondStepResult step(const Context& c, ParallelBond& b, double*, const BondSection& sec,
                                const BondStiffness& stiff, const PairKinematics& kin,
                                std::vector<BondBreak>& breaks) {
-        BondStepResult r;
+        // One aggregate per outcome, built from values (no zero-fill of the 88-byte result).
         update_bond_forces(b, sec, stiff, kin);
         const BondStress stress = bond_peak_stress(b, sec, c.moment_factor);
         const BondState failure = bond_failure(b, stress, c.tan_phi);
         if (failure != BondState::intact) {
-            if (c.track) r.released = bond_strain_energy(b, sec, stiff);
+            const double released = c.track ? bond_strain_energy(b, sec, stiff) : 0.0;
             breaks.push_back({failure, -1, {}, stress.tensile, stress.shear});
             release_bond(b, failure);
-            r.failure = failure;
-            return r;
+            return {.failure = failure, .force_j = {}, .moment_j = {}, .stored = 0.0, .released = released};
         }
-        if (c.track) r.stored = bond_strain_energy(b, sec, stiff);
-        r.force_j = bond_force_on_j(b, kin.normal);
-        r.moment_j = bond_moment_on_j(b, kin.normal);
-        return r;
+        return {.failure = BondState::intact,
+                .force_j = bond_force_on_j(b, kin.normal),
+                .moment_j = bond_moment_on_j(b, kin.normal),
+                .stored = c.track ? bond_strain_energy(b, sec, stiff) : 0.0};
     }
 
     static TimeStepStiffness time_step_stiffness(const BondSection& s, const BondStiffness& k,

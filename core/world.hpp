@@ -145,6 +145,9 @@ private:
         BondStiffness stiffness;
     };
     std::vector<BondConstants> bond_const_;
+    /// Strain energy of each bond after the latest step [J] (0 once broken), summed per bond
+    /// block by the fused pair pass so the sum keeps the bond-order rounding (world_pairs.cpp).
+    std::vector<double> bond_stored_;
     bool bond_const_stale_ = true;
     std::size_t bond_side_stride_ = 0;   ///< 0 for laws without side state (parallel bond)
     std::vector<Wall> walls_;
@@ -194,6 +197,9 @@ private:
     };
     BondEnergy compute_bonds(double dt);
     void refresh_bond_constants();
+    /// Phases 2 and 3 in one pass for the parallel bond (world_pairs.cpp); returns the bond
+    /// energies, the contact strain and slip energies through `strain` and `slip`.
+    BondEnergy compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip);
     template <class Law>
     BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);
