@@ -41,7 +41,8 @@ constexpr int kLanes = 32;
 /// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
 struct Lanes {
     int count = 0;
-    std::int64_t pair[kLanes];
+    std::int64_t pair[kLanes];     ///< pair index
+    std::int32_t bond[kLanes];     ///< bond index, -1: not bonded
     // inputs: the pair's particles, the stored contact shear force, the bond (bonded lanes)
     double xa[3][kLanes], xb[3][kLanes], va[3][kLanes], vb[3][kLanes], wa[3][kLanes], wb[3][kLanes];
     double ra[kLanes], rb[kLanes];
@@ -156,12 +157,30 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
         Lanes& B = lanes[1];  // open bonded pairs: bond only
         std::int8_t where[kLanes];  // per pair of the batch: -1 nothing, 0 lane of C, 1 lane of B
         std::int8_t which[kLanes];  // its lane index
+        constexpr double kIntact = static_cast<double>(static_cast<int>(BondState::intact));
+        // An intact bond's new state, energy and contribution to the pair output; false if it
+        // broke (handled afterwards, in pair order).
+        auto store_bond = [&](const Lanes& L, int l, PairOutput& out) {
+            const std::int32_t bk = L.bond[l];
+            if (bk < 0) return true;
+            if (L.failure[l] != kIntact) return false;
+            ParallelBond& b = bonds_[static_cast<std::size_t>(bk)];
+            b.normal_force = L.fn[l];
+            b.shear_force = lane(L.fs, l);
+            b.twist_moment = L.mt[l];
+            b.bend_moment = lane(L.mb, l);
+            bond_stored_[static_cast<std::size_t>(bk)] = track ? L.energy[l] : 0.0;
+            out.force_j += lane(L.b_force, l);
+            out.torque_j += lane(L.b_torque, l);
+            return true;
+        };
         for (std::int64_t b0 = begin; b0 < end; b0 += kLanes) {
             const std::int64_t b1 = std::min(end, b0 + kLanes);
             C.count = B.count = 0;
-            // 1. scan: which pairs need work; copy their inputs into lanes
+            // 1. scan: which pairs need work; copy their inputs into lanes (the lane set is
+            //    picked by index, not by a branch: open/closed is a coin flip in a loaded test)
             for (std::int64_t k = b0; k < b1; ++k) {
-                const Pair& p = pairs_[static_cast<std::size_t>(k)];
+                Pair& p = pairs_[static_cast<std::size_t>(k)];
                 const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
                 const Vec3& xa = particles_.position[i];
                 const Vec3& xb = particles_.position[j];
@@ -170,15 +189,18 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 const bool bonded = p.bond >= 0 && bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
                 const bool open = norm2(d) >= (ra + rb) * (ra + rb);
                 const auto slot = static_cast<std::size_t>(k - b0);
-                if (open && !bonded) {
+                if (open && !bonded) {  // nothing acts
                     where[slot] = -1;
+                    p.shear_force = {};
+                    pair_out_[static_cast<std::size_t>(k)] = {};
                     continue;
                 }
-                Lanes& L = open ? B : C;
+                Lanes& L = lanes[static_cast<std::size_t>(open)];
                 const int l = L.count++;
-                where[slot] = open ? 1 : 0;
+                where[slot] = static_cast<std::int8_t>(open);
                 which[slot] = static_cast<std::int8_t>(l);
                 L.pair[l] = k;
+                L.bond[l] = bonded ? p.bond : -1;
                 set_lane(L.xa, l, xa);
                 set_lane(L.xb, l, xb);
                 set_lane(L.va, l, particles_.velocity[i]);
@@ -216,50 +238,48 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
             // 2. the arithmetic, vectorised across lanes
             if (C.count > 0) contact_lanes(C, dt, contact_.effective_modulus, contact_.stiffness_ratio, contact_.friction);
             if (B.count > 0) bond_lanes(B, dt);
-            // 3. results back, in pair order (energies summed in pair order, breaks logged in bond order)
+            // 3. results back. Contact lanes in pair order (so the energies are summed in pair
+            //    order): contact output first, then the bond's part, as the separate phases did.
+            bool any_break = false;
+            for (int l = 0; l < C.count; ++l) {
+                const auto k = static_cast<std::size_t>(C.pair[l]);
+                PairOutput& out = pair_out_[k];
+                pairs_[k].shear_force = lane(C.c_shear, l);
+                out.force_j = lane(C.c_force, l);
+                out.torque_j = lane(C.c_torque, l);
+                strain_sum += C.c_strain[l];
+                slip_sum += C.c_slip[l];
+                any_break |= !store_bond(C, l, out);
+            }
+            for (int l = 0; l < B.count; ++l) {  // open: the contact carries nothing
+                const auto k = static_cast<std::size_t>(B.pair[l]);
+                PairOutput& out = pair_out_[k];
+                pairs_[k].shear_force = {};
+                out = {};
+                any_break |= !store_bond(B, l, out);
+            }
+            if (!any_break) continue;
+            // 4. breaks (rare), in pair order = bond order
             for (std::int64_t k = b0; k < b1; ++k) {
-                Pair& p = pairs_[static_cast<std::size_t>(k)];
-                PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
                 const auto slot = static_cast<std::size_t>(k - b0);
-                if (where[slot] != 0) {  // open: the contact carries nothing
-                    p.shear_force = {};
-                    out = {};
-                    if (where[slot] < 0) continue;
-                }
-                const Lanes& L = where[slot] == 0 ? C : B;
+                if (where[slot] < 0) continue;
+                const Lanes& L = lanes[static_cast<std::size_t>(where[slot])];
                 const int l = which[slot];
-                if (where[slot] == 0) {
-                    p.shear_force = lane(L.c_shear, l);
-                    out.force_j = lane(L.c_force, l);
-                    out.torque_j = lane(L.c_torque, l);
-                    strain_sum += L.c_strain[l];
-                    slip_sum += L.c_slip[l];
-                }
-                if (p.bond < 0 || bonds_[static_cast<std::size_t>(p.bond)].state != BondState::intact) continue;
-                const auto bk = static_cast<std::size_t>(p.bond);
+                if (L.bond[l] < 0 || L.failure[l] == kIntact) continue;
+                const auto bk = static_cast<std::size_t>(L.bond[l]);
                 ParallelBond& b = bonds_[bk];
                 const auto failure = static_cast<BondState>(static_cast<int>(L.failure[l]));
-                if (failure != BondState::intact) {
-                    // the geometry of the crack: the kinematics again (a pure function: same bits)
-                    const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
-                    const PairState s{particles_.position[i], particles_.position[j],
-                                      particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
-                                      particles_.spin[j], particles_.radius[i], particles_.radius[j]};
-                    const PairKinematics kin = pair_kinematics(s, dt);
-                    bo.breaks.push_back({step_, time_, p.bond, b.i, b.j, failure, s.xa + kin.arm_a + Vec3{},
-                                         kin.normal, L.radius[l], L.tensile[l], L.shear_stress[l], -1});
-                    release_bond(b, failure);
-                    bond_stored_[bk] = 0.0;
-                    bo.released.push_back({p.bond, track ? L.energy[l] : 0.0});
-                    continue;
-                }
-                b.normal_force = L.fn[l];
-                b.shear_force = lane(L.fs, l);
-                b.twist_moment = L.mt[l];
-                b.bend_moment = lane(L.mb, l);
-                bond_stored_[bk] = track ? L.energy[l] : 0.0;
-                out.force_j += lane(L.b_force, l);
-                out.torque_j += lane(L.b_torque, l);
+                // the geometry of the crack: the kinematics again (a pure function: same bits)
+                const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+                const PairState s{particles_.position[i], particles_.position[j],
+                                  particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
+                                  particles_.spin[j], particles_.radius[i], particles_.radius[j]};
+                const PairKinematics kin = pair_kinematics(s, dt);
+                bo.breaks.push_back({step_, time_, L.bond[l], b.i, b.j, failure, s.xa + kin.arm_a + Vec3{},
+                                     kin.normal, L.radius[l], L.tensile[l], L.shear_stress[l], -1});
+                release_bond(b, failure);
+                bond_stored_[bk] = 0.0;
+                bo.released.push_back({L.bond[l], track ? L.energy[l] : 0.0});
             }
         }
         bo.contact_strain = strain_sum;
