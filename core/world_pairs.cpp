@@ -176,7 +176,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
         };
         for (std::int64_t b0 = begin; b0 < end; b0 += kLanes) {
             const std::int64_t b1 = std::min(end, b0 + kLanes);
-            C.count = B.count = 0;
+            int count[2] = {0, 0};
             // 1. scan: which pairs need work; copy their inputs into lanes (the lane set is
             //    picked by index, not by a branch: open/closed is a coin flip in a loaded test)
             for (std::int64_t k = b0; k < b1; ++k) {
@@ -189,14 +189,16 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 const bool bonded = p.bond >= 0 && bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
                 const bool open = norm2(d) >= (ra + rb) * (ra + rb);
                 const auto slot = static_cast<std::size_t>(k - b0);
-                if (open && !bonded) {  // nothing acts
+                if (__builtin_expect(static_cast<int>(open) & static_cast<int>(!bonded), 0)) {  // nothing acts
                     where[slot] = -1;
                     p.shear_force = {};
                     pair_out_[static_cast<std::size_t>(k)] = {};
                     continue;
                 }
                 Lanes& L = lanes[static_cast<std::size_t>(open)];
-                const int l = L.count++;
+                const int l = open ? count[1] : count[0];  // counters in registers
+                count[1] += open;
+                count[0] += !open;
                 where[slot] = static_cast<std::int8_t>(open);
                 which[slot] = static_cast<std::int8_t>(l);
                 L.pair[l] = k;
@@ -235,6 +237,8 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                     L.tan_phi[l] = L.beta[l] = 0.0;
                 }
             }
+            C.count = count[0];
+            B.count = count[1];
             // 2. the arithmetic, vectorised across lanes
             if (C.count > 0) contact_lanes(C, dt, contact_.effective_modulus, contact_.stiffness_ratio, contact_.friction);
             if (B.count > 0) bond_lanes(B, dt);
