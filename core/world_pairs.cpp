@@ -22,7 +22,7 @@
 // Vectorised across pairs: each block of pairs is cut into batches of kLanes; a scalar scan
 // copies the inputs of the pairs that need work into structure-of-arrays lanes (overlapping
 // pairs in one set, open bonded pairs in another), one loop runs the kinematics, contact and
-// bond arithmetic over the lanes (branch-free kernels, `#pragma omp simd`, compiled for AVX2
+// bond arithmetic over the lanes (branch-free kernels, compiled for AVX-512, AVX2
 // and for the baseline ISA with function multiversioning), and a scalar pass writes the results
 // back in pair order. Each lane does the same IEEE operations in the same order as the scalar
 // code (-ffp-contract=off: no FMA; no reassociation), so the results are bitwise the same.
@@ -113,10 +113,10 @@ __attribute__((always_inline, flatten)) inline void pair_lanes_body(Lanes& L, do
     }
 }
 
-// Function multiversioning: an AVX2 clone and a baseline clone, picked at load time (the
+// Function multiversioning: AVX-512 (8 lanes), AVX2 (4) and baseline (2) clones, picked at load time (the
 // default build must run on any x86-64: no -march=native).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(GRADEM_NO_CLONES)
-#define GRADEM_LANES_CLONES __attribute__((target_clones("avx2", "default")))
+#define GRADEM_LANES_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define GRADEM_LANES_CLONES
 #endif
