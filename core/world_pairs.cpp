@@ -37,6 +37,7 @@ namespace gradem {
 namespace {
 
 constexpr int kLanes = 32;
+constexpr std::int64_t kPrefetchAhead = 16;  ///< pairs
 
 /// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
 struct Lanes {
@@ -180,6 +181,15 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
             // 1. scan: which pairs need work; copy their inputs into lanes (the lane set is
             //    picked by index, not by a branch: open/closed is a coin flip in a loaded test)
             for (std::int64_t k = b0; k < b1; ++k) {
+                // particle j of a pair a few pairs ahead: its state is a random access (pairs
+                // are sorted by i, so i streams), which the hardware does not prefetch
+                if (k + kPrefetchAhead < end) {
+                    const auto jn = static_cast<std::size_t>(pairs_[static_cast<std::size_t>(k + kPrefetchAhead)].j);
+                    __builtin_prefetch(&particles_.position[jn]);
+                    __builtin_prefetch(&particles_.velocity[jn]);
+                    __builtin_prefetch(&particles_.spin[jn]);
+                    __builtin_prefetch(&particles_.radius[jn]);
+                }
                 Pair& p = pairs_[static_cast<std::size_t>(k)];
                 const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
                 const Vec3& xa = particles_.position[i];
