@@ -30,23 +30,28 @@ struct LinearContactResult {
 
 /// One step of the linear law. `rotated_shear` is the stored shear force already carried into
 /// the current plane; du_shear the shear displacement increment of B relative to A.
+/// Branch-free (every term computed, the cases selected after: the loop over pairs vectorises,
+/// world_pairs.cpp); the selected values are those of the plain if/else form, bit for bit.
 inline LinearContactResult linear_contact(double kn, double ks, double friction, double gap,
                                           const Vec3& rotated_shear, const Vec3& du_shear) {
+    const bool touching = !(gap >= 0.0);  // as the old early return: a NaN gap computes on
+    const double normal_force = -kn * gap;
+    const Vec3 trial = rotated_shear - ks * du_shear;
+    const double limit = friction * normal_force;
+    const double trial2 = norm2(trial);
+    const bool sliding = trial2 > limit * limit;
+    const Vec3 slid = (limit / std::sqrt(trial2)) * trial;
+    const Vec3 fs = select(sliding, slid, trial);
+    // Work of the shear force on dU_s (trapezoid) minus the change of stored shear energy.
+    const double work_done_on_spring = -0.5 * dot(rotated_shear + fs, du_shear);
+    const double slip_energy = work_done_on_spring - 0.5 * (norm2(fs) - norm2(rotated_shear)) / ks;
+    const double strain_energy = 0.5 * normal_force * normal_force / kn + 0.5 * norm2(fs) / ks;
     LinearContactResult out;
-    if (gap >= 0.0) return out;
-    out.normal_force = -kn * gap;
-    Vec3 fs = rotated_shear - ks * du_shear;
-    const double limit = friction * out.normal_force;
-    const double fs2 = norm2(fs);
-    if (fs2 > limit * limit) {
-        fs = (limit / std::sqrt(fs2)) * fs;
-        out.sliding = true;
-        // Work of the shear force on dU_s (trapezoid) minus the change of stored shear energy.
-        const double work_done_on_spring = -0.5 * dot(rotated_shear + fs, du_shear);
-        out.slip_energy = work_done_on_spring - 0.5 * (norm2(fs) - norm2(rotated_shear)) / ks;
-    }
-    out.shear_force = fs;
-    out.strain_energy = 0.5 * out.normal_force * out.normal_force / kn + 0.5 * norm2(fs) / ks;
+    out.normal_force = touching ? normal_force : 0.0;
+    out.shear_force = select(touching, fs, Vec3{});
+    out.sliding = touching && sliding;
+    out.strain_energy = touching ? strain_energy : 0.0;
+    out.slip_energy = touching && sliding ? slip_energy : 0.0;
     return out;
 }
 

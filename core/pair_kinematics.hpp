@@ -16,6 +16,13 @@
 
 namespace gradem {
 
+/// c ? a : b component by component (a select of doubles, not of a struct, so a loop that
+/// uses it stays branch-free and vectorises; by value: a select of references became a load from
+/// a selected address, which blocks vectorisation).
+inline Vec3 select(bool c, Vec3 a, Vec3 b) {
+    return {c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
+}
+
 struct PairKinematics {
     Vec3 normal;          ///< n, unit, A -> B
     Vec3 previous_normal; ///< n one step earlier (from x - v dt)
@@ -37,40 +44,53 @@ struct PairState {
 
 /// Kinematics of pair (A, B) for a step of length dt [s].
 inline PairKinematics pair_kinematics(const PairState& s, double dt) {
-    PairKinematics k;
+    // Locals first, one aggregate at the end: no zero-fill of the 200-byte result before the
+    // fields are written (the compiler emitted a rep stos for it; issue 10).
     const Vec3 d = s.xb - s.xa;
     const double dist = norm(d);
-    k.normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0};
+    // Reciprocals taken unconditionally and the zero-length case selected after (the same bits
+    // where dist > 0; branch-free, so the loop over pairs vectorises: world_pairs.cpp).
+    const double inv_dist = 1.0 / dist;
+    const Vec3 normal = select(dist > 0.0, inv_dist * d, Vec3{1.0, 0.0, 0.0});
     const Vec3 d_prev = d - dt * (s.vb - s.va);
     const double dist_prev = norm(d_prev);
-    k.previous_normal = dist_prev > 0.0 ? (1.0 / dist_prev) * d_prev : k.normal;
-    k.tilt = cross(k.previous_normal, k.normal);
-    k.gap = dist - s.ra - s.rb;
-    k.arm_a = (s.ra + 0.5 * k.gap) * k.normal;
-    k.arm_b = k.arm_a - d;
+    const double inv_dist_prev = 1.0 / dist_prev;
+    const Vec3 previous_normal = select(dist_prev > 0.0, inv_dist_prev * d_prev, normal);
+    const double gap = dist - s.ra - s.rb;
+    const Vec3 arm_a = (s.ra + 0.5 * gap) * normal;
     // Spin terms use mid-step lever arms (from the mean of the old and new normals), so the
     // increment is second-order accurate: a rigid rotation gives O(theta^3) per step, not O(theta^2).
-    const Vec3 arm_a_mid = (s.ra + 0.5 * k.gap) * (0.5 * (k.normal + k.previous_normal));
+    const Vec3 arm_a_mid = (s.ra + 0.5 * gap) * (0.5 * (normal + previous_normal));
     const Vec3 arm_b_mid = arm_a_mid - 0.5 * (d + d_prev);
     const Vec3 du = dt * ((s.vb + cross(s.wb, arm_b_mid)) - (s.va + cross(s.wa, arm_a_mid)));
-    k.du_shear = du - dot(du, k.normal) * k.normal;
-    k.du_normal = dist - dist_prev;
     const Vec3 dtheta = dt * (s.wb - s.wa);
-    k.twist_angle = dot(dtheta, k.normal);
-    k.bend_angle = dtheta - k.twist_angle * k.normal;
-    k.mean_twist = 0.5 * dt * dot(s.wa + s.wb, k.normal);
-    return k;
+    const double twist_angle = dot(dtheta, normal);
+    return PairKinematics{
+        .normal = normal,
+        .previous_normal = previous_normal,
+        .tilt = cross(previous_normal, normal),
+        .gap = gap,
+        .arm_a = arm_a,
+        .arm_b = arm_a - d,
+        .du_shear = du - dot(du, normal) * normal,
+        .du_normal = dist - dist_prev,
+        .twist_angle = twist_angle,
+        .bend_angle = dtheta - twist_angle * normal,
+        .mean_twist = 0.5 * dt * dot(s.wa + s.wb, normal),
+    };
 }
 
 /// Carries a vector stored in the old contact plane into the new one: small rotation about
 /// n_old x n_new (the plane tilt), then about n by the mean spin (P&C 2004; YADE ScGeom::rotate),
 /// then projection onto the new plane. The magnitude changes by O(theta^2) per step (theta the
 /// rotation per step, ~1e-7 rad in a quasi-static test), which is negligible.
+/// A zero vector is returned as it is (bit for bit, signed zeros included); branch-free.
 inline Vec3 rotate_into_plane(const Vec3& v, const PairKinematics& k) {
-    if (v.x == 0.0 && v.y == 0.0 && v.z == 0.0) return v;
+    const bool zero = (v.x == 0.0) & (v.y == 0.0) & (v.z == 0.0);
     Vec3 r = v - cross(v, k.tilt);
     r = r - cross(r, k.mean_twist * k.normal);
-    return r - dot(r, k.normal) * k.normal;
+    r = r - dot(r, k.normal) * k.normal;
+    return select(zero, v, r);
 }
 
 }  // namespace gradem

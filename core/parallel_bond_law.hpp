@@ -18,9 +18,9 @@ inline double bond_shear_strength(const ParallelBond& b, double axial_stress, do
 
 /// Failure mode for the current stresses: intact, broken_tension or broken_shear.
 inline BondState bond_failure(const ParallelBond& b, const BondStress& s, double tan_phi) {
-    if (s.tensile >= b.tensile_strength) return BondState::broken_tension;
-    if (s.shear >= bond_shear_strength(b, s.axial, tan_phi)) return BondState::broken_shear;
-    return BondState::intact;
+    const bool shear = s.shear >= bond_shear_strength(b, s.axial, tan_phi);
+    return s.tensile >= b.tensile_strength ? BondState::broken_tension
+                                           : (shear ? BondState::broken_shear : BondState::intact);
 }
 
 struct ParallelBondLaw {
@@ -37,24 +37,36 @@ struct ParallelBondLaw {
     static std::size_t side_size(const BondParams&) { return 0; }
     static void install(const BondParams&, const Vec3&, double*) {}
 
+    /// The arithmetic of one step: advances b's forces and moments, and returns the failure
+    /// mode, the peak stresses, the strain energy of the advanced state (0 if not tracked) and
+    /// the force and moment on j. No bookkeeping, no branches: the fused pair pass runs it over
+    /// many bonds at once (world_pairs.cpp); step() below is it plus the break bookkeeping.
+    struct Advance {
+        BondState failure;
+        BondStress stress;
+        double energy;       ///< [J]
+        Vec3 force_j;        ///< [N]
+        Vec3 moment_j;       ///< [N m]
+    };
+    [[gnu::always_inline]] static Advance advance(const Context& c, ParallelBond& b, const BondSection& sec,
+                           const BondStiffness& stiff, const PairKinematics& kin) {
+        update_bond_forces(b, sec, stiff, kin);
+        const BondStress stress = bond_peak_stress(b, sec, c.moment_factor);
+        return {bond_failure(b, stress, c.tan_phi), stress,
+                c.track ? bond_strain_energy(b, sec, stiff) : 0.0, bond_force_on_j(b, kin.normal),
+                bond_moment_on_j(b, kin.normal)};
+    }
+
     static BondStepResult step(const Context& c, ParallelBond& b, double*, const BondSection& sec,
                                const BondStiffness& stiff, const PairKinematics& kin,
                                std::vector<BondBreak>& breaks) {
-        BondStepResult r;
-        update_bond_forces(b, sec, stiff, kin);
-        const BondStress stress = bond_peak_stress(b, sec, c.moment_factor);
-        const BondState failure = bond_failure(b, stress, c.tan_phi);
-        if (failure != BondState::intact) {
-            if (c.track) r.released = bond_strain_energy(b, sec, stiff);
-            breaks.push_back({failure, -1, {}, stress.tensile, stress.shear});
-            release_bond(b, failure);
-            r.failure = failure;
-            return r;
+        const Advance a = advance(c, b, sec, stiff, kin);
+        if (a.failure != BondState::intact) {
+            breaks.push_back({a.failure, -1, {}, a.stress.tensile, a.stress.shear});
+            release_bond(b, a.failure);
+            return {.failure = a.failure, .force_j = {}, .moment_j = {}, .stored = 0.0, .released = a.energy};
         }
-        if (c.track) r.stored = bond_strain_energy(b, sec, stiff);
-        r.force_j = bond_force_on_j(b, kin.normal);
-        r.moment_j = bond_moment_on_j(b, kin.normal);
-        return r;
+        return {.failure = BondState::intact, .force_j = a.force_j, .moment_j = a.moment_j, .stored = a.energy};
     }
 
     static TimeStepStiffness time_step_stiffness(const BondSection& s, const BondStiffness& k,

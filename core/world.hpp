@@ -4,7 +4,8 @@
 //   1. neighbours  - rebuild the Verlet pair list when particles moved more than half the skin;
 //   2. contacts    - linear contact law for every pair, into that pair's own output slot;
 //   3. bonds       - the bond law (BondParams::model; core/bond_models.hpp) for every intact
-//                    bond, added into its pair's slot;
+//                    bond, added into its pair's slot (with the parallel bond, 2 and 3 are one
+//                    vectorised pass over the pairs, bitwise the same: world_pairs.cpp);
 //   4. walls       - linear contact with each platen, into per-wall-contact slots;
 //   5. gather      - each particle sums its slots in a fixed order into force/torque;
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
@@ -145,6 +146,9 @@ private:
         BondStiffness stiffness;
     };
     std::vector<BondConstants> bond_const_;
+    /// Strain energy of each bond after the latest step [J] (0 once broken), summed per bond
+    /// block by the fused pair pass so the sum keeps the bond-order rounding (world_pairs.cpp).
+    std::vector<double> bond_stored_;
     bool bond_const_stale_ = true;
     std::size_t bond_side_stride_ = 0;   ///< 0 for laws without side state (parallel bond)
     std::vector<Wall> walls_;
@@ -194,6 +198,9 @@ private:
     };
     BondEnergy compute_bonds(double dt);
     void refresh_bond_constants();
+    /// Phases 2 and 3 in one pass for the parallel bond (world_pairs.cpp); returns the bond
+    /// energies, the contact strain and slip energies through `strain` and `slip`.
+    BondEnergy compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip);
     template <class Law>
     BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);

@@ -84,6 +84,7 @@ std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
                 decltype(law)::install(bond_family_params_[bonds_[k].family_pair], normals[k],
                                        bond_side_.data() + k * stride);
         });
+    bond_stored_.assign(bonds_.size(), 0.0);
     bond_const_stale_ = true;
     rebuild_needed_ = true;
     forces_current_ = false;

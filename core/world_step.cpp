@@ -91,9 +91,14 @@ RunStatus World::step() {
 void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
     ForceEvaluation e;
     double contact_slip = 0, wall_strain = 0, wall_slip = 0;
-    compute_contacts(increment_dt, e.contact_strain, contact_slip);
-    profile_.contacts += clock.lap();
-    const BondEnergy bond = compute_bonds(increment_dt);
+    BondEnergy bond;
+    if (bond_params_.model == BondModel::parallel_bond) {  // one pass (world_pairs.cpp)
+        bond = compute_contacts_and_parallel_bonds(increment_dt, e.contact_strain, contact_slip);
+    } else {
+        compute_contacts(increment_dt, e.contact_strain, contact_slip);
+        profile_.contacts += clock.lap();
+        bond = compute_bonds(increment_dt);
+    }
     e.bond_strain = bond.stored;
     e.released = bond.released;
     e.damage = bond.damage;

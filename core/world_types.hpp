@@ -46,7 +46,8 @@ struct BreakEvent {
     std::int32_t element = -1;    ///< flat-joint element that broke, -1: the whole bond
 };
 
-/// Wall-clock seconds spent per phase, cumulative.
+/// Wall-clock seconds spent per phase, cumulative. With the parallel bond, contacts and bonds
+/// are one pass (core/world_pairs.cpp) timed under `bonds`; `contacts` then stays 0.
 struct StepProfile {
     double neighbors = 0.0, contacts = 0.0, bonds = 0.0, walls = 0.0, integrate = 0.0;
     std::int64_t rebuilds = 0;

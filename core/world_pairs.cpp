@@ -1,0 +1,323 @@
+// Phases 2 and 3 in one pass over the Verlet pairs, for the parallel bond (issue 10). With the
+// parallel bond the linear contact acts beside the bond (PFC linearpbond), so a bonded pair
+// that overlaps needs the same pair kinematics twice: once in the contact phase, once in the
+// bond phase. In a compression test about 55 % of the bonded pairs overlap, and almost every
+// pair is bonded; this pass loads each pair's particle state and evaluates pair_kinematics()
+// once, then applies the contact law and the bond law in the order of the two separate phases.
+//
+// Bitwise the same as compute_contacts() followed by compute_bonds_with<ParallelBondLaw>():
+//   - per pair: the contact output is written first, the bond's force and moment added after,
+//     with the same expressions on the same kinematics (pair_kinematics is a pure function);
+//   - contact energies: summed per fixed pair block in pair order, as before;
+//   - bond energies: the old loop summed them per fixed BOND block in bond order. Pairs and
+//     bonds are both sorted by (i, j), so bonded pairs meet their bonds in bond order, but the
+//     blocks differ; the stored energy of each bond is therefore kept in bond_stored_ and
+//     summed per bond block afterwards, and the released energies (breaks only, in bond order)
+//     per bond block from the break list. A bond that did not break adds +0 to the released
+//     sum and a broken one +0 to the stored sum: both sums start at +0 and only add values
+//     >= 0, so these additions never changed a bit;
+//   - break events: per pair block in pair order, merged in block order = bond order.
+// Soft bonds and flat joints keep the two separate phases (world_step.cpp, world_bonds.cpp).
+//
+// Vectorised across pairs: each block of pairs is cut into batches of kLanes; a scalar scan
+// copies the inputs of the pairs that need work into structure-of-arrays lanes (overlapping
+// pairs in one set, open bonded pairs in another), one loop runs the kinematics, contact and
+// bond arithmetic over the lanes (branch-free kernels, compiled for AVX-512, AVX2
+// and for the baseline ISA with function multiversioning), and a scalar pass writes the results
+// back in pair order. Each lane does the same IEEE operations in the same order as the scalar
+// code (-ffp-contract=off: no FMA; no reassociation), so the results are bitwise the same.
+#include <memory>
+
+#include "core/contact_law.hpp"
+#include "core/parallel.hpp"
+#include "core/parallel_bond_law.hpp"
+#include "core/world.hpp"
+
+namespace gradem {
+namespace {
+
+constexpr int kLanes = 32;
+constexpr std::int64_t kPrefetchAhead = 16;  ///< pairs
+
+/// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
+struct Lanes {
+    int count = 0;
+    std::int64_t pair[kLanes];     ///< pair index
+    std::int32_t bond[kLanes];     ///< bond index, -1: not bonded
+    // inputs: the pair's particles, the stored contact shear force, the bond (bonded lanes)
+    double xa[3][kLanes], xb[3][kLanes], va[3][kLanes], vb[3][kLanes], wa[3][kLanes], wb[3][kLanes];
+    double ra[kLanes], rb[kLanes];
+    double shear[3][kLanes];
+    double fn[kLanes], fs[3][kLanes], mt[kLanes], mb[3][kLanes];
+    double strength[kLanes], cohesion[kLanes], radius[kLanes], inv_radius[kLanes];
+    double kn[kLanes], ks[kLanes], tan_phi[kLanes], beta[kLanes];
+    // results: contact (shear force, output force and torque on j, energies) ...
+    double c_shear[3][kLanes], c_force[3][kLanes], c_torque[3][kLanes], c_strain[kLanes], c_slip[kLanes];
+    // ... and bond (advanced state, failure code, peak stresses, energy, force and torque on j)
+    double failure[kLanes], tensile[kLanes], shear_stress[kLanes], energy[kLanes];
+    double b_force[3][kLanes], b_torque[3][kLanes];
+};
+
+inline Vec3 lane(const double (&a)[3][kLanes], int l) { return {a[0][l], a[1][l], a[2][l]}; }
+inline void set_lane(double (&a)[3][kLanes], int l, const Vec3& v) {
+    a[0][l] = v.x;
+    a[1][l] = v.y;
+    a[2][l] = v.z;
+}
+
+/// The arithmetic of compute_contacts() (WithContact) and of ParallelBondLaw::step() for every
+/// lane; the caller keeps the results it needs.
+template <bool WithContact>
+__attribute__((always_inline, flatten)) inline void pair_lanes_body(Lanes& L, double dt, double e_contact, double ratio_contact,
+                            double friction) {
+    const int n = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < n; ++l) {
+        PairState s{lane(L.xa, l), lane(L.xb, l), lane(L.va, l), lane(L.vb, l),
+                          lane(L.wa, l), lane(L.wb, l), L.ra[l], L.rb[l]};
+        // Aggregates not const: GCC keeps a const aggregate in memory (SRA refuses the store
+        // of its return slot), and a struct in memory blocks the vectoriser.
+        PairKinematics kin = pair_kinematics(s, dt);
+        if constexpr (WithContact) {
+            const double kn = contact_normal_stiffness(e_contact, s.ra, s.rb);
+            LinearContactResult r = linear_contact(kn, kn / ratio_contact, friction, kin.gap,
+                                                         rotate_into_plane(lane(L.shear, l), kin), kin.du_shear);
+            const Vec3 force = r.normal_force * kin.normal + r.shear_force;
+            set_lane(L.c_shear, l, r.shear_force);
+            set_lane(L.c_force, l, force);
+            set_lane(L.c_torque, l, cross(kin.arm_b, force));
+            L.c_strain[l] = r.strain_energy;
+            L.c_slip[l] = r.slip_energy;
+        }
+        ParallelBond b;
+        b.tensile_strength = L.strength[l];
+        b.cohesion = L.cohesion[l];
+        b.normal_force = L.fn[l];
+        b.shear_force = lane(L.fs, l);
+        b.twist_moment = L.mt[l];
+        b.bend_moment = lane(L.mb, l);
+        BondSection sec = bond_section_of_radius(L.radius[l], L.inv_radius[l]);
+        // energy always computed here (a select on a loop-invariant bool does not vectorise);
+        // the write-back keeps it only if tracked, as ParallelBondLaw::step() does
+        const ParallelBondLaw::Context ctx{L.tan_phi[l], L.beta[l], true};
+        ParallelBondLaw::Advance a = ParallelBondLaw::advance(ctx, b, sec, {L.kn[l], L.ks[l]}, kin);
+        L.fn[l] = b.normal_force;
+        set_lane(L.fs, l, b.shear_force);
+        L.mt[l] = b.twist_moment;
+        set_lane(L.mb, l, b.bend_moment);
+        L.failure[l] = static_cast<double>(static_cast<int>(a.failure));
+        L.tensile[l] = a.stress.tensile;
+        L.shear_stress[l] = a.stress.shear;
+        L.energy[l] = a.energy;
+        set_lane(L.b_force, l, a.force_j);
+        set_lane(L.b_torque, l, cross(kin.arm_b, a.force_j) + a.moment_j);
+    }
+}
+
+// Function multiversioning: AVX-512 (8 lanes), AVX2 (4) and baseline (2) clones, picked at load time (the
+// default build must run on any x86-64: no -march=native).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(GRADEM_NO_CLONES)
+#define GRADEM_LANES_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define GRADEM_LANES_CLONES
+#endif
+
+GRADEM_LANES_CLONES __attribute__((flatten)) void contact_lanes(Lanes& L, double dt, double e, double ratio, double mu) {
+    pair_lanes_body<true>(L, dt, e, ratio, mu);
+}
+GRADEM_LANES_CLONES __attribute__((flatten)) void bond_lanes(Lanes& L, double dt) {
+    pair_lanes_body<false>(L, dt, 0.0, 1.0, 0.0);
+}
+
+}  // namespace
+
+World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip) {
+    if (bond_const_stale_) refresh_bond_constants();
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    const auto nb = static_cast<std::int64_t>(bonds_.size());
+    bond_stored_.resize(bonds_.size(), 0.0);
+    std::vector<ParallelBondLaw::Context> contexts;  // one per bond family pair
+    for (const BondParams& p : bond_family_params_) contexts.push_back(ParallelBondLaw::context(p, sim_.track_energy));
+    const bool track = sim_.track_energy;
+
+    struct Released {
+        std::int64_t bond;
+        double energy;  ///< [J]
+    };
+    struct BlockOut {
+        double contact_strain = 0, contact_slip = 0;
+        std::vector<BreakEvent> breaks;
+        std::vector<Released> released;
+    };
+    std::vector<BlockOut> blocks(static_cast<std::size_t>(block_count(m)));
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        BlockOut& bo = blocks[static_cast<std::size_t>(blk)];
+        double strain_sum = 0, slip_sum = 0;
+        auto lanes = std::make_unique<Lanes[]>(2);
+        Lanes& C = lanes[0];  // overlapping pairs: contact, and bond if bonded
+        Lanes& B = lanes[1];  // open bonded pairs: bond only
+        std::int8_t where[kLanes];  // per pair of the batch: -1 nothing, 0 lane of C, 1 lane of B
+        std::int8_t which[kLanes];  // its lane index
+        constexpr double kIntact = static_cast<double>(static_cast<int>(BondState::intact));
+        // An intact bond's new state, energy and contribution to the pair output; false if it
+        // broke (handled afterwards, in pair order).
+        auto store_bond = [&](const Lanes& L, int l, PairOutput& out) {
+            const std::int32_t bk = L.bond[l];
+            if (bk < 0) return true;
+            if (L.failure[l] != kIntact) return false;
+            ParallelBond& b = bonds_[static_cast<std::size_t>(bk)];
+            b.normal_force = L.fn[l];
+            b.shear_force = lane(L.fs, l);
+            b.twist_moment = L.mt[l];
+            b.bend_moment = lane(L.mb, l);
+            bond_stored_[static_cast<std::size_t>(bk)] = track ? L.energy[l] : 0.0;
+            out.force_j += lane(L.b_force, l);
+            out.torque_j += lane(L.b_torque, l);
+            return true;
+        };
+        for (std::int64_t b0 = begin; b0 < end; b0 += kLanes) {
+            const std::int64_t b1 = std::min(end, b0 + kLanes);
+            int count[2] = {0, 0};
+            // 1. scan: which pairs need work; copy their inputs into lanes (the lane set is
+            //    picked by index, not by a branch: open/closed is a coin flip in a loaded test)
+            for (std::int64_t k = b0; k < b1; ++k) {
+                // particle j of a pair a few pairs ahead: its state is a random access (pairs
+                // are sorted by i, so i streams), which the hardware does not prefetch
+                if (k + kPrefetchAhead < end) {
+                    const auto jn = static_cast<std::size_t>(pairs_[static_cast<std::size_t>(k + kPrefetchAhead)].j);
+                    __builtin_prefetch(&particles_.position[jn]);
+                    __builtin_prefetch(&particles_.velocity[jn]);
+                    __builtin_prefetch(&particles_.spin[jn]);
+                    __builtin_prefetch(&particles_.radius[jn]);
+                }
+                Pair& p = pairs_[static_cast<std::size_t>(k)];
+                const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
+                const Vec3& xa = particles_.position[i];
+                const Vec3& xb = particles_.position[j];
+                const double ra = particles_.radius[i], rb = particles_.radius[j];
+                const Vec3 d = xb - xa;
+                const bool bonded = p.bond >= 0 && bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
+                const bool open = norm2(d) >= (ra + rb) * (ra + rb);
+                const auto slot = static_cast<std::size_t>(k - b0);
+                if (__builtin_expect(static_cast<int>(open) & static_cast<int>(!bonded), 0)) {  // nothing acts
+                    where[slot] = -1;
+                    p.shear_force = {};
+                    pair_out_[static_cast<std::size_t>(k)] = {};
+                    continue;
+                }
+                Lanes& L = lanes[static_cast<std::size_t>(open)];
+                const int l = open ? count[1] : count[0];  // counters in registers
+                count[1] += open;
+                count[0] += !open;
+                where[slot] = static_cast<std::int8_t>(open);
+                which[slot] = static_cast<std::int8_t>(l);
+                L.pair[l] = k;
+                L.bond[l] = bonded ? p.bond : -1;
+                set_lane(L.xa, l, xa);
+                set_lane(L.xb, l, xb);
+                set_lane(L.va, l, particles_.velocity[i]);
+                set_lane(L.vb, l, particles_.velocity[j]);
+                set_lane(L.wa, l, particles_.spin[i]);
+                set_lane(L.wb, l, particles_.spin[j]);
+                L.ra[l] = ra;
+                L.rb[l] = rb;
+                set_lane(L.shear, l, p.shear_force);
+                if (bonded) {
+                    const ParallelBond& bd = bonds_[static_cast<std::size_t>(p.bond)];
+                    const BondConstants& bc = bond_const_[static_cast<std::size_t>(p.bond)];
+                    const ParallelBondLaw::Context& ctx = contexts[bd.family_pair];
+                    L.fn[l] = bd.normal_force;
+                    set_lane(L.fs, l, bd.shear_force);
+                    L.mt[l] = bd.twist_moment;
+                    set_lane(L.mb, l, bd.bend_moment);
+                    L.strength[l] = bd.tensile_strength;
+                    L.cohesion[l] = bd.cohesion;
+                    L.radius[l] = bc.radius;
+                    L.inv_radius[l] = bc.inv_radius;
+                    L.kn[l] = bc.stiffness.normal;
+                    L.ks[l] = bc.stiffness.shear;
+                    L.tan_phi[l] = ctx.tan_phi;
+                    L.beta[l] = ctx.moment_factor;
+                } else {  // a harmless dummy bond (its results are not used)
+                    L.fn[l] = L.mt[l] = 0.0;
+                    set_lane(L.fs, l, {});
+                    set_lane(L.mb, l, {});
+                    L.strength[l] = L.cohesion[l] = 1.0;
+                    L.radius[l] = L.inv_radius[l] = L.kn[l] = L.ks[l] = 1.0;
+                    L.tan_phi[l] = L.beta[l] = 0.0;
+                }
+            }
+            C.count = count[0];
+            B.count = count[1];
+            // 2. the arithmetic, vectorised across lanes
+            if (C.count > 0) contact_lanes(C, dt, contact_.effective_modulus, contact_.stiffness_ratio, contact_.friction);
+            if (B.count > 0) bond_lanes(B, dt);
+            // 3. results back. Contact lanes in pair order (so the energies are summed in pair
+            //    order): contact output first, then the bond's part, as the separate phases did.
+            bool any_break = false;
+            for (int l = 0; l < C.count; ++l) {
+                const auto k = static_cast<std::size_t>(C.pair[l]);
+                PairOutput& out = pair_out_[k];
+                pairs_[k].shear_force = lane(C.c_shear, l);
+                out.force_j = lane(C.c_force, l);
+                out.torque_j = lane(C.c_torque, l);
+                strain_sum += C.c_strain[l];
+                slip_sum += C.c_slip[l];
+                any_break |= !store_bond(C, l, out);
+            }
+            for (int l = 0; l < B.count; ++l) {  // open: the contact carries nothing
+                const auto k = static_cast<std::size_t>(B.pair[l]);
+                PairOutput& out = pair_out_[k];
+                pairs_[k].shear_force = {};
+                out = {};
+                any_break |= !store_bond(B, l, out);
+            }
+            if (!any_break) continue;
+            // 4. breaks (rare), in pair order = bond order
+            for (std::int64_t k = b0; k < b1; ++k) {
+                const auto slot = static_cast<std::size_t>(k - b0);
+                if (where[slot] < 0) continue;
+                const Lanes& L = lanes[static_cast<std::size_t>(where[slot])];
+                const int l = which[slot];
+                if (L.bond[l] < 0 || L.failure[l] == kIntact) continue;
+                const auto bk = static_cast<std::size_t>(L.bond[l]);
+                ParallelBond& b = bonds_[bk];
+                const auto failure = static_cast<BondState>(static_cast<int>(L.failure[l]));
+                // the geometry of the crack: the kinematics again (a pure function: same bits)
+                const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+                const PairState s{particles_.position[i], particles_.position[j],
+                                  particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
+                                  particles_.spin[j], particles_.radius[i], particles_.radius[j]};
+                const PairKinematics kin = pair_kinematics(s, dt);
+                bo.breaks.push_back({step_, time_, L.bond[l], b.i, b.j, failure, s.xa + kin.arm_a + Vec3{},
+                                     kin.normal, L.radius[l], L.tensile[l], L.shear_stress[l], -1});
+                release_bond(b, failure);
+                bond_stored_[bk] = 0.0;
+                bo.released.push_back({L.bond[l], track ? L.energy[l] : 0.0});
+            }
+        }
+        bo.contact_strain = strain_sum;
+        bo.contact_slip = slip_sum;
+    });
+
+    double contact_strain = 0, contact_slip = 0;
+    std::vector<BondEnergy> bond_partial(static_cast<std::size_t>(block_count(nb)));
+    for (const BlockOut& bo : blocks) {
+        contact_strain += bo.contact_strain;
+        contact_slip += bo.contact_slip;
+        breaks_.insert(breaks_.end(), bo.breaks.begin(), bo.breaks.end());
+        for (const Released& x : bo.released)
+            bond_partial[static_cast<std::size_t>(x.bond / kBlockSize)].released += x.energy;
+    }
+    strain = contact_strain;
+    slip = contact_slip;
+    if (sim_.track_energy)
+        for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+            double stored = 0;
+            for (std::int64_t k = begin; k < end; ++k) stored += bond_stored_[static_cast<std::size_t>(k)];
+            bond_partial[static_cast<std::size_t>(blk)].stored = stored;
+        });
+    return ordered_sum(bond_partial);
+}
+
+}  // namespace gradem

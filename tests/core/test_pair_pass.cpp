@@ -1,0 +1,129 @@
+// The fused contact + parallel-bond pass (core/world_pairs.cpp, issue 10) keeps the bookkeeping
+// of the two separate phases it replaced: bond energies summed per fixed bond block in bond
+// order, breaks logged in bond order, everything independent of the thread count. The packing
+// has several pair and bond blocks (> 2 x kBlockSize bonds), overlapping and open bonded pairs,
+// and breaks.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+
+#include "core/parallel.hpp"
+#include "core_fixtures.hpp"
+
+using namespace gradem;
+using namespace gradem::test;
+
+namespace {
+
+std::uint64_t bits(double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+BondParams bond_params() {
+    BondParams bp;
+    bp.effective_modulus = 1.0e9;
+    bp.tensile_strength_mean = 4.0e6;
+    bp.tensile_strength_std = 1.2e6;
+    bp.cohesion_mean = 8.0e6;
+    bp.cohesion_std = 2.0e6;
+    bp.friction_angle_deg = 15.0;
+    bp.moment_factor = 0.8;
+    return bp;
+}
+
+// A 12^3 bonded lattice, partly overlapping, squeezed between platens: overlapping contacts, then breaks.
+World squeezed_lattice(int threads) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+    ContactParams contact;
+    contact.effective_modulus = 1.0e9;
+    World world(jittered_cluster(12, 1.0e-3, 7), contact, SimParams{});
+    world.scale_radii(1.06);  // some neighbours overlap: contacts beside bonds
+    world.install_bonds(bond_params(), 0.5e-3);
+    double lo = 1e9, hi = -1e9;
+    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
+    world.add_wall({"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {}, {}, {}, {}});
+    world.add_wall({"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.3}, {}, {}, {}});
+    return world;
+}
+
+// Bond strain energy of a set of bonds as the bond phase sums it: per fixed block of bonds in
+// bond order, blocks in order (bond_law.hpp's disc energy of each intact bond).
+double bond_energy_by_blocks(const World& world, const std::vector<ParallelBond>& bonds) {
+    const BondParams& bp = world.bond_params();
+    const auto& r = world.particles().radius;
+    double total = 0.0;
+    for (std::size_t b0 = 0; b0 < bonds.size(); b0 += static_cast<std::size_t>(kBlockSize)) {
+        double block = 0.0;
+        for (std::size_t k = b0; k < std::min(bonds.size(), b0 + static_cast<std::size_t>(kBlockSize)); ++k) {
+            const ParallelBond& b = bonds[k];
+            if (b.state != BondState::intact) continue;
+            const double ra = r[static_cast<std::size_t>(b.i)], rb = r[static_cast<std::size_t>(b.j)];
+            const BondSection sec = bond_section(bp.radius_multiplier, ra, rb);
+            const BondSection s = bond_section_of_radius(sec.radius, 1.0 / sec.radius);
+            block += bond_strain_energy(b, s, bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb));
+        }
+        total += block;
+    }
+    return total;
+}
+
+}  // namespace
+
+TEST_CASE("fused pair pass: bond strain energy is the bond-block sum over the bonds", "[core][pair_pass]") {
+    World world = squeezed_lattice(2);
+    REQUIRE(world.bonds().size() > 2 * static_cast<std::size_t>(kBlockSize));
+    world.run(2000);
+    REQUIRE(world.active_contact_count() > 50);             // pairs overlap ...
+    REQUIRE(world.break_events().size() > 50);              // ... and bonds have broken
+    const std::vector<ParallelBond> before = world.bonds();
+    world.run(1);  // the ledger now reports the evaluation at `before`
+    CHECK(bits(world.energy().strain_bond) == bits(bond_energy_by_blocks(world, before)));
+    CHECK(world.energy().strain_bond > 0.0);
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+}
+
+TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 threads", "[core][pair_pass]") {
+    struct Outcome {
+        std::uint64_t hash;
+        std::vector<std::uint64_t> energy;
+        std::vector<BreakEvent> breaks;
+    };
+    auto run = [](int threads) {
+        World world = squeezed_lattice(threads);
+        world.run(2500);
+        const EnergyLedger& e = world.energy();
+        return Outcome{world.state_hash(),
+                       {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping),
+                        bits(e.friction), bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
+                       world.break_events()};
+    };
+    const Outcome one = run(1);
+    REQUIRE(one.breaks.size() > 100);
+    for (int threads : {2, 3}) {
+        INFO("threads " << threads);
+        const Outcome other = run(threads);
+        CHECK(other.hash == one.hash);
+        CHECK(other.energy == one.energy);
+        REQUIRE(other.breaks.size() == one.breaks.size());
+        for (std::size_t k = 0; k < one.breaks.size(); ++k) {
+            CHECK(other.breaks[k].bond == one.breaks[k].bond);
+            CHECK(other.breaks[k].step == one.breaks[k].step);
+            CHECK(bits(other.breaks[k].position.x) == bits(one.breaks[k].position.x));
+            CHECK(bits(other.breaks[k].tensile_stress) == bits(one.breaks[k].tensile_stress));
+        }
+    }
+    // breaks are logged in bond order within a step
+    for (std::size_t k = 1; k < one.breaks.size(); ++k)
+        if (one.breaks[k].step == one.breaks[k - 1].step) CHECK(one.breaks[k].bond > one.breaks[k - 1].bond);
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+}
