@@ -9,6 +9,7 @@
 
 #include "core/parallel.hpp"
 #include "core_fixtures.hpp"
+#include "../with_threads.hpp"
 
 using namespace gradem;
 using namespace gradem::test;
@@ -34,12 +35,7 @@ BondParams bond_params() {
 }
 
 // A 12^3 bonded lattice, partly overlapping, squeezed between platens: overlapping contacts, then breaks.
-World squeezed_lattice(int threads) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
+World squeezed_lattice() {
     ContactParams contact;
     contact.effective_modulus = 1.0e9;
     World world(jittered_cluster(12, 1.0e-3, 7), contact, SimParams{});
@@ -76,18 +72,17 @@ double bond_energy_by_blocks(const World& world, const std::vector<ParallelBond>
 }  // namespace
 
 TEST_CASE("fused pair pass: bond strain energy is the bond-block sum over the bonds", "[core][pair_pass]") {
-    World world = squeezed_lattice(2);
-    REQUIRE(world.bonds().size() > 2 * static_cast<std::size_t>(kBlockSize));
-    world.run(2000);
-    REQUIRE(world.active_contact_count() > 50);             // pairs overlap ...
-    REQUIRE(world.break_events().size() > 50);              // ... and bonds have broken
-    const std::vector<ParallelBond> before = world.bonds();
-    world.run(1);  // the ledger now reports the evaluation at `before`
-    CHECK(bits(world.energy().strain_bond) == bits(bond_energy_by_blocks(world, before)));
-    CHECK(world.energy().strain_bond > 0.0);
-#ifdef _OPENMP
-    omp_set_num_threads(2);
-#endif
+    with_threads(2, [] {
+        World world = squeezed_lattice();
+        REQUIRE(world.bonds().size() > 2 * static_cast<std::size_t>(kBlockSize));
+        world.run(2000);
+        REQUIRE(world.active_contact_count() > 50);             // pairs overlap ...
+        REQUIRE(world.break_events().size() > 50);              // ... and bonds have broken
+        const std::vector<ParallelBond> before = world.bonds();
+        world.run(1);  // the ledger now reports the evaluation at `before`
+        CHECK(bits(world.energy().strain_bond) == bits(bond_energy_by_blocks(world, before)));
+        CHECK(world.energy().strain_bond > 0.0);
+    });
 }
 
 TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 threads", "[core][pair_pass]") {
@@ -97,13 +92,15 @@ TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 thre
         std::vector<BreakEvent> breaks;
     };
     auto run = [](int threads) {
-        World world = squeezed_lattice(threads);
-        world.run(2500);
-        const EnergyLedger& e = world.energy();
-        return Outcome{world.state_hash(),
-                       {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping),
-                        bits(e.friction), bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
-                       world.break_events()};
+        return with_threads(threads, [] {
+            World world = squeezed_lattice();
+            world.run(2500);
+            const EnergyLedger& e = world.energy();
+            return Outcome{world.state_hash(),
+                           {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping),
+                            bits(e.friction), bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
+                           world.break_events()};
+        });
     };
     const Outcome one = run(1);
     REQUIRE(one.breaks.size() > 100);
@@ -123,7 +120,4 @@ TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 thre
     // breaks are logged in bond order within a step
     for (std::size_t k = 1; k < one.breaks.size(); ++k)
         if (one.breaks[k].step == one.breaks[k - 1].step) CHECK(one.breaks[k].bond > one.breaks[k - 1].bond);
-#ifdef _OPENMP
-    omp_set_num_threads(2);
-#endif
 }
