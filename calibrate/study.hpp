@@ -20,7 +20,7 @@ struct CalibratedPoint {
     std::filesystem::path summary;
     CalibrationProblem problem;
     std::vector<double> values;
-    std::string bond_model;  ///< the material's bond model name
+    std::string bond_model;  ///< the material's bond model name (", explicit_paste" appended for paste specimens)
 };
 
 /// Reads summary.json and its calibration problem; InputError naming the summary when it
