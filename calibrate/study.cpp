@@ -245,6 +245,7 @@ StudyResult run_study(const StudyConfig& config, const std::function<void(const 
         const CalibratedPoint point = load_calibrated_point(config.calibration);
         result.calibration_summaries.push_back(config.calibration.string());
         result.representative = point.problem.representative;
+        (void)as_study_problem(point.problem, config);  // the study's sands are checked before the ledger opens
         StudyRunner runner(config, log, execution);
         switch (config.kind) {
             case StudyKind::gradation_effect: run_gradation_effect(point, runner, result); break;

@@ -73,6 +73,7 @@ void read_study(Context& ctx, const toml::table& root, StudyConfig& c) {
     if (auto seeds = read_list<std::uint64_t>(s, "seeds", "a non-empty array of positive integers", positive_integer);
         !seeds.empty())
         c.seeds = seeds;
+    c.sands = read_list<std::string>(s, "sands", "an array of sand names", text_item);
     const auto edges = read_list<double>(s, "edges_mm", "a non-empty array of positive numbers [mm]", positive_number);
     const auto mins = read_list<double>(s, "min_diameters_mm", "a non-empty array of positive numbers [mm]", positive_number);
     c.parameters = read_list<std::string>(s, "parameters", "an array of parameter names", text_item);
@@ -82,6 +83,10 @@ void read_study(Context& ctx, const toml::table& root, StudyConfig& c) {
     if (kind.empty()) throw InputError(ctx.file, 0, "key 'study.kind' is required");
     c.kind = parse_kind(kind, ctx);
     auto line = [&](const char* key) { return ctx.keys[std::string("study.") + key].line; };
+    c.sands_line = line("sands");
+    if (!c.sands.empty() && c.kind != StudyKind::resolution && c.kind != StudyKind::fines_truncation)
+        throw InputError(ctx.file, line("sands"),
+                         "key 'study.sands' belongs to kinds \"resolution\" and \"fines_truncation\" (the others compare every sand)");
     const bool needs_summary = c.kind != StudyKind::model_form;
     if (needs_summary) {
         if (c.calibration.empty())
@@ -152,6 +157,11 @@ std::string StudyConfig::describe() const {
     d << "\nparameters";
     for (const auto& p : parameters) d << " " << p;
     d << "\nstep " << step << "\n";
+    if (!sands.empty()) {  // only when given, so the ledgers of studies without the key stay valid
+        d << "sands";
+        for (const auto& s : sands) d << " " << s;
+        d << "\n";
+    }
     return d.str();
 }
 

@@ -35,6 +35,8 @@ struct StudyConfig {
     std::filesystem::path calibration;                 ///< summary.json of the calibration studied
     std::vector<std::filesystem::path> calibrations;   ///< model_form: one summary per model
     std::vector<std::uint64_t> seeds = {1, 2, 3, 4, 5};
+    std::vector<std::string> sands;                    ///< a subset of the calibration's sands (empty: all)
+    int sands_line = 0;                                ///< where `sands` was given, for errors
     std::vector<double> sweep_mm;                      ///< edges (resolution) or min diameters (fines) [mm]
     std::vector<std::string> parameters;               ///< sensitivity: names (empty: every free one)
     double step = 0.10;                                ///< sensitivity: relative step of each parameter

@@ -1,10 +1,12 @@
 #include "calibrate/study_models.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "calibrate/calibration.hpp"
 #include "calibrate/study.hpp"
 #include "calibrate/study_kinds.hpp"
+#include "common/input_error.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -18,10 +20,30 @@ bool same_case(const CalibrationProblem& a, const CalibrationProblem& b) {
            a.describe() == b.describe();
 }
 
+/// Keeps the study's `sands` (in its order) of the calibration's, with their lab targets.
+void select_sands(CalibrationProblem& problem, const StudyConfig& config) {
+    std::vector<std::string> sands;
+    std::vector<SandTargets> targets;
+    for (const std::string& name : config.sands) {
+        const auto it = std::find(problem.sands.begin(), problem.sands.end(), name);
+        if (it == problem.sands.end()) {
+            std::string known;
+            for (const auto& s : problem.sands) known += (known.empty() ? "" : ", ") + s;
+            throw common::InputError(config.file.string(), config.sands_line,
+                                     "key 'study.sands': '" + name + "' is not a sand of the calibration (" + known + ")");
+        }
+        sands.push_back(name);
+        targets.push_back(problem.targets.at(static_cast<std::size_t>(it - problem.sands.begin())));
+    }
+    problem.sands = std::move(sands);
+    problem.targets = std::move(targets);
+}
+
 }  // namespace
 
 CalibrationProblem as_study_problem(CalibrationProblem problem, const StudyConfig& config) {
     problem.seeds = config.seeds;
+    if (!config.sands.empty()) select_sands(problem, config);
     problem.workers = config.workers;
     problem.timeout_s = config.timeout_s;
     problem.solver.max_runs = 1 << 30;  // a study runs what it asks for

@@ -174,6 +174,42 @@ TEST_CASE("study on a shared executor: each case's sands routed to its model, th
             }
 }
 
+TEST_CASE("study: a size sweep of one of the calibration's sands runs that sand only", "[calibrate][study]") {
+    TempDir dir("study-one-sand");
+    const fs::path summary = calibrated_summary(dir.path);
+    const std::string cal_key = "calibration = \"" + summary.string() + "\"\n";
+    const fs::path toml = write_study(dir.path, "kind = \"resolution\"\n" + cal_key +
+                                                    "edges_mm = [2.5, 3.0]\nseeds = [1, 2]\nsands = [\"Van Buren\"]");
+    const cal::StudyConfig config = cal::load_study_config(toml);
+    const std::vector<cal::CalibrationProblem> problems = cal::study_problems(config);
+    REQUIRE(problems.size() == 2);
+    CHECK(problems[0].sands == std::vector<std::string>{"Van Buren"});
+    REQUIRE(problems[0].targets.size() == 1);
+    const cal::CalibrationProblem full = cal::load_calibrated_point(summary).problem;
+    CHECK(problems[0].targets[0].modulus.mean == full.targets[1].modulus.mean);  // Van Buren's lab targets, not the first sand's
+
+    const cal::StudyResult r = cal::run_study(config);
+    // Two edges x two seeds x one sand (the stand-in ignores the edge: the second edge's runs
+    // are the first's, served by the ledger).
+    CHECK(r.runs_executed + r.runs_from_ledger == 2 * 2);
+    CHECK(r.runs_failed == 0);
+    REQUIRE(r.cases.size() == 2);
+    for (const cal::StudyCase& c : r.cases) {
+        CHECK(c.sands == std::vector<std::string>{"Van Buren"});
+        REQUIRE(c.runs.size() == 1);
+        CHECK(c.runs[0].size() == 2);
+    }
+    // The key changes the study's identity: a sweep of every sand does not resume from this ledger.
+    cal::StudyConfig every = config;
+    every.sands.clear();
+    CHECK(every.describe() != config.describe());
+
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"resolution\"\n" + cal_key + "edges_mm = [2.5, 3.0]\nsands = [\"Ottawa\"]")),
+               Catch::Contains("study.toml:5: key 'study.sands': 'Ottawa' is not a sand of the calibration (pre-blended, Van Buren)"));
+    CHECK_THAT(error_of(write_study(dir.path, "kind = \"gradation_effect\"\n" + cal_key + "sands = [\"Van Buren\"]")),
+               Catch::Contains("study.toml:4: key 'study.sands' belongs to kinds \"resolution\" and \"fines_truncation\""));
+}
+
 TEST_CASE("study: model_form tabulates calibrations with their shape index, sigma_c/sigma_t and cost; resumes",
           "[calibrate][study]") {
     TempDir dir("study-model-form");
