@@ -141,7 +141,11 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
             CHECK(p.seeds.size() == (main_job ? 3u : 2u));
             CHECK(p.base.specimen.genesis.edge == Approx(main_job ? 3.5e-3 : 2.5e-3));
             const cal::ParameterSpace space(p.parameters, p.base.material);
-            CHECK(space.size() == (main_job ? 3u : 4u));  // E*, tensile strength, cohesion ratio (, strength cv)
+            // E*, tensile strength, and the shapes: the bonding gap (main job) or cohesion ratio and strength cv
+            CHECK(space.size() == (main_job ? 3u : 4u));
+            bool gap_free = false;
+            for (std::size_t k = 0; k < space.size(); ++k) gap_free = gap_free || space.free(k).name == "bond_gap_um";
+            CHECK(gap_free == main_job);
             CHECK(space.index_of(cal::Role::stiffness_scale).has_value());
             CHECK(space.index_of(cal::Role::strength_scale).has_value());
         }
@@ -240,7 +244,7 @@ TEST_CASE("the shipped soft-bond and flat-joint calibration configs load within 
     for (const Shipped& s : {Shipped{"joint_soft_bond.toml", BondModel::soft_bond,
                                      {"effective_modulus_gpa", "tensile_strength_mpa", "softening_factor", "cut_fraction"}},
                              Shipped{"joint_flat_joint.toml", BondModel::flat_joint,
-                                     {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio"}}}) {
+                                     {"effective_modulus_gpa", "bond_gap_um", "tensile_strength_mpa", "cohesion_ratio"}}}) {
         DYNAMIC_SECTION(s.name) {
             std::string text = bytes(configs / s.name);
             std::string quoted_base = "\"";  // built in steps: GCC 12 warns (-Wrestrict) on "\"" + s + "\""
