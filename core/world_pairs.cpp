@@ -26,6 +26,8 @@
 // and for the baseline ISA with function multiversioning), and a scalar pass writes the results
 // back in pair order. Each lane does the same IEEE operations in the same order as the scalar
 // code (-ffp-contract=off: no FMA; no reassociation), so the results are bitwise the same.
+#include <algorithm>
+#include <cstddef>
 #include <memory>
 
 #include "core/contact_law.hpp"
@@ -37,7 +39,8 @@ namespace gradem {
 namespace {
 
 constexpr int kLanes = 32;
-constexpr std::int64_t kPrefetchAhead = 16;  ///< pairs
+constexpr std::int64_t kPrefetchAhead = 16;  ///< pairs: particle j's state (a random access)
+constexpr std::int64_t kStreamAhead = 32;    ///< pairs: the pair's bond, constants and output slot
 
 /// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
 struct Lanes {
@@ -189,6 +192,21 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                     __builtin_prefetch(&particles_.velocity[jn]);
                     __builtin_prefetch(&particles_.spin[jn]);
                     __builtin_prefetch(&particles_.radius[jn]);
+                }
+                // the streams of the pair a batch ahead (bond, bond constants, stored energy,
+                // output slot, and the pair record further on): ~10 concurrent streams at
+                // N = 2e5 outrun the hardware prefetcher (issue 10: pass -14 % at 2e5, -5 % at 2e4)
+                if (k + kStreamAhead < end) {
+                    const auto ka = static_cast<std::size_t>(k + kStreamAhead);
+                    __builtin_prefetch(&pair_out_[ka], 1);
+                    __builtin_prefetch(&pairs_[std::min(ka + kStreamAhead, pairs_.size() - 1)], 1);
+                    if (const std::int32_t bond = pairs_[ka].bond; bond >= 0) {
+                        const auto* record = reinterpret_cast<const char*>(&bonds_[static_cast<std::size_t>(bond)]);
+                        __builtin_prefetch(record + offsetof(ParallelBond, state), 1);  // a bond spans two lines
+                        __builtin_prefetch(record + sizeof(ParallelBond) - 1, 1);
+                        __builtin_prefetch(&bond_const_[static_cast<std::size_t>(bond)]);
+                        __builtin_prefetch(&bond_stored_[static_cast<std::size_t>(bond)], 1);
+                    }
                 }
                 Pair& p = pairs_[static_cast<std::size_t>(k)];
                 const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
