@@ -30,6 +30,7 @@
 #include <bit>
 #include <cstddef>
 #include <memory>
+#include <type_traits>
 
 #include "core/contact_law.hpp"
 #include "core/parallel.hpp"
@@ -171,7 +172,9 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
         std::vector<Released> released;
     };
     std::vector<BlockOut> blocks(static_cast<std::size_t>(block_count(m)));
-    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+    // One block of pairs; `prefetch` (std::true_type / std::false_type) compiles the stream
+    // prefetches in or out, so the in-cache loop is the one without them.
+    auto pass_block = [&](auto prefetch, std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BlockOut& bo = blocks[static_cast<std::size_t>(blk)];
         double strain_sum = 0, slip_sum = 0;
         auto lanes = std::make_unique<Lanes[]>(2);
@@ -214,7 +217,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 // the streams of the pair a batch ahead (bond, bond constants, stored energy,
                 // output slot, and the pair record further on): ~10 concurrent streams at
                 // N = 2e5 outrun the hardware prefetcher (issue 10; only out of cache: kPrefetchAboveBytes)
-                if (prefetch_streams && k + kStreamAhead < end) {
+                if (decltype(prefetch)::value && k + kStreamAhead < end) {
                     const auto ka = static_cast<std::size_t>(k + kStreamAhead);
                     __builtin_prefetch(&pair_out_[ka], 1);
                     __builtin_prefetch(&pairs_[std::min(ka + kStreamAhead, pairs_.size() - 1)]);
@@ -334,6 +337,10 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
         }
         bo.contact_strain = strain_sum;
         bo.contact_slip = slip_sum;
+    };
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        if (prefetch_streams) pass_block(std::true_type{}, begin, end, blk);
+        else pass_block(std::false_type{}, begin, end, blk);
     });
 
     double contact_strain = 0, contact_slip = 0;
