@@ -157,6 +157,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     std::vector<ParallelBondLaw::Context> contexts;  // one per bond family pair
     for (const BondParams& p : bond_family_params_) contexts.push_back(ParallelBondLaw::context(p, sim_.track_energy));
     const bool track = sim_.track_energy;
+    // bytes the pass streams: pair records and slots, bonds, constants and energies, x v w r
     const std::size_t pass_bytes = pairs_.size() * (sizeof(Pair) + sizeof(PairOutput)) +
                                    bonds_.size() * (sizeof(ParallelBond) + sizeof(BondConstants) + sizeof(double)) +
                                    particles_.size() * (3 * sizeof(Vec3) + sizeof(double));
@@ -217,7 +218,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 // the streams of the pair a batch ahead (bond, bond constants, stored energy,
                 // output slot, and the pair record further on): ~10 concurrent streams at
                 // N = 2e5 outrun the hardware prefetcher (issue 10; only out of cache: kPrefetchAboveBytes)
-                if (decltype(prefetch)::value && k + kStreamAhead < end) {
+                if constexpr (decltype(prefetch)::value) if (k + kStreamAhead < end) {
                     const auto ka = static_cast<std::size_t>(k + kStreamAhead);
                     __builtin_prefetch(&pair_out_[ka], 1);
                     __builtin_prefetch(&pairs_[std::min(ka + kStreamAhead, pairs_.size() - 1)]);
