@@ -46,7 +46,7 @@ constexpr std::int64_t kStreamAhead = 32;    ///< pairs: the pair's bond, consta
 /// The streams are prefetched only when the pass's arrays outgrow a last-level cache of this
 /// size (the development machine's L3, 32 MiB; sysconf reports the host's 384 MiB there). In
 /// cache the prefetches are extra instructions (-1..2 % at N = 2e4, 14 MB); from memory they
-/// save 14 % of the pass (N = 2e5, 140 MB).
+/// save 14 % of the pass (N = 2e5, 125 MB).
 constexpr std::size_t kPrefetchAboveBytes = std::size_t{32} << 20;
 
 /// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
