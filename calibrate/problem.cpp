@@ -83,6 +83,23 @@ void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
         throw InputError(ctx.file, line, "key 'calibration.edge_mm': " + *why);
 }
 
+// [calibration] paste_diameter_mm: one coarse-grained paste size for every run, replacing the
+// base config's paste.min/max_diameter_mm (explicit-paste bases only; the same base serves
+// calibrations at several paste sizes, issue 11).
+void apply_paste_diameter(Context& ctx, double diameter, exp::CubeConfig& base) {
+    const int line = ctx.keys["calibration.paste_diameter_mm"].line;
+    if (!base.specimen.paste)
+        throw InputError(ctx.file, line,
+                         "key 'calibration.paste_diameter_mm' needs a base config with specimen.representation = "
+                         "\"explicit_paste\" (it is \"" + base.representation + "\")");
+    if (!(diameter > 0.0) || !std::isfinite(diameter))
+        throw InputError(ctx.file, line, "key 'calibration.paste_diameter_mm' must be a positive paste particle diameter [mm]");
+    exp::PasteSpec& paste = base.specimen.paste->paste;
+    paste.min_diameter = paste.max_diameter = diameter;
+    if (const auto why = paste.invalid_reason())
+        throw InputError(ctx.file, line, "key 'calibration.paste_diameter_mm': " + *why);
+}
+
 void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem& p) {
     Section s(ctx, root, "calibration");
     fs::path base;
@@ -97,6 +114,8 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     s.text("bond_model", bond_model);
     double edge = 0.0;  // [m] 0: the base config's genesis.edge_mm
     s.real("edge_mm", edge, 1e-3);
+    double paste_diameter = 0.0;  // [m] 0: the base config's paste size
+    s.real("paste_diameter_mm", paste_diameter, 1e-3);
     s.finish();
     p.mode = parse_mode(mode, ctx);
     if (p.model != "dem" && p.model != "analytic")
@@ -115,6 +134,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
         p.base.material.bond.model = *model;
     }
     if (ctx.keys["calibration.edge_mm"].line > 0) apply_edge(ctx, edge, p.base);
+    if (ctx.keys["calibration.paste_diameter_mm"].line > 0) apply_paste_diameter(ctx, paste_diameter, p.base);
     if (p.sands.empty()) throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' is empty");
     const std::set<std::string> unique(p.sands.begin(), p.sands.end());
     if (unique.size() != p.sands.size())

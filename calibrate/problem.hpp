@@ -3,7 +3,8 @@
 //
 //   [calibration] base (a cube config: specimen size rule, genesis, start material, test),
 //                 mode = "joint" | "per_sand" | "study", sands, calibrate_on, seeds, model,
-//                 bond_model (overrides the base's [material] model; kept in base.material)
+//                 bond_model (overrides the base's [material] model; kept in base.material),
+//                 edge_mm, paste_diameter_mm (override the base's cube edge and paste size)
 //   [targets]     lab_results (the lab_results.json of `gradem lab`), modulus/peak/strain weights
 //   [parameters.<name>]  free, start, lower, upper, scale = "log" | "linear"
 //   [solver]      method, max_runs, tolerance, fd_step, homogeneity_tolerance, penalty, seed

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace gradem::cal {
@@ -61,6 +62,71 @@ double output(const Evaluation& e, std::size_t sand, Quantity q) {
     return std::nan("");
 }
 
+/// A shape column's difference point taken from the solve's own history instead of a new run.
+struct ReusedPoint {
+    Evaluation outputs;  ///< the past evaluation, rescaled to the best point's scales
+    double unit_step;    ///< its shape coordinate minus the best's, unit box
+    std::string what;    ///< for the report
+};
+
+/// A past evaluation lies on the shape column k through the best point if every other shape
+/// parameter is the same and the scales differ only by one factor per kind (α for the moduli,
+/// β for the strengths); returns those factors (best / past).
+std::optional<Scales> scales_to_best(const ParameterSpace& space, const std::vector<double>& best, const std::vector<double>& past,
+                                     std::size_t k) {
+    const std::vector<double> u0 = space.to_unit(best), u = space.to_unit(past);
+    std::optional<double> alpha, beta;
+    auto same_factor = [](std::optional<double>& factor, double f) {
+        if (!factor) factor = f;
+        return std::fabs(f / *factor - 1.0) <= 1e-9;
+    };
+    for (std::size_t j = 0; j < space.size(); ++j) {
+        const Role role = space.free(j).role();
+        if (role == Role::shape) {
+            if (j != k && std::fabs(u[j] - u0[j]) > 1e-9) return std::nullopt;
+        } else if (!same_factor(role == Role::stiffness_scale ? alpha : beta, best[j] / past[j])) {
+            return std::nullopt;
+        }
+    }
+    return Scales{alpha.value_or(1.0), beta.value_or(1.0)};
+}
+
+/// With the homogeneity verified (E ∝ α, peak ∝ β, strain ∝ β/α, calibration.md §1), every
+/// evaluation of the scaling path's shape search is, after rescaling, a point on its shape
+/// column through the best point. The one whose step is nearest the finite-difference step h,
+/// within [h/2, kMaxSecantSteps·h], serves as the difference point for free: a secant over up
+/// to three steps, whose curvature error is traded against the runs' seed noise (which a
+/// longer step divides down).
+constexpr double kMaxSecantSteps = 3.0;
+
+bool same_sands(const Evaluation& a, const Evaluation& b) {
+    if (a.sands.size() != b.sands.size()) return false;
+    for (std::size_t i = 0; i < a.sands.size(); ++i)
+        if (a.sands[i].sand != b.sands[i].sand) return false;
+    return true;
+}
+
+std::optional<ReusedPoint> reusable_difference(const SolveContext& ctx, const SolveResult& sol, std::size_t k, double h) {
+    const ParameterSpace& space = ctx.space;
+    const double u_best = space.to_unit(sol.best)[k];
+    std::optional<ReusedPoint> chosen;
+    for (const Evaluation& e : ctx.evaluator.history()) {
+        if (e.failed || e.values.size() != sol.best.size() || !same_sands(e, sol.best_eval)) continue;
+        const double step = space.to_unit(e.values)[k] - u_best;
+        if (std::fabs(step) < h / 2 || std::fabs(step) > kMaxSecantSteps * h) continue;
+        if (chosen && std::fabs(std::fabs(step) - h) >= std::fabs(std::fabs(chosen->unit_step) - h)) continue;
+        const std::optional<Scales> sc = scales_to_best(space, sol.best, e.values, k);
+        if (!sc) continue;
+        std::ostringstream what;
+        what.precision(4);
+        what << space.free(k).name << ": difference point from evaluation " << e.index << " (" << e.label << ", "
+             << space.free(k).name << " = " << e.values[k] << "), rescaled to the best point's scales (moduli x "
+             << sc->alpha << ", strengths x " << sc->beta << "; no new runs)";
+        chosen = ReusedPoint{rescaled(e, sc->alpha, sc->beta), step, what.str()};
+    }
+    return chosen;
+}
+
 }  // namespace
 
 Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
@@ -72,18 +138,34 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
         return u;
     }
     const bool closed_form = sol.homogeneity.holds;
-    // 1. Difference points for every column that is not closed-form.
+    // 1. Difference points for every column that is not closed-form: from the shape search's
+    //    history where the homogeneity allows (scaling path), else new runs.
     const std::vector<double> u0 = space.to_unit(sol.best);
-    std::vector<std::size_t> fd_columns;
+    std::vector<std::size_t> fd_columns, reused_columns;
     std::vector<std::vector<double>> points;
-    std::vector<double> steps;
+    std::vector<double> steps, reused_steps;
+    std::vector<Evaluation> reused;
     for (std::size_t k = 0; k < n; ++k) {
         if (closed_form && space.free(k).role() != Role::shape) continue;
+        const double h = unit_fd_step(space, k, u0[k], ctx.problem.solver.fd_step);
+        if (closed_form) {
+            if (std::optional<ReusedPoint> r = reusable_difference(ctx, sol, k, std::fabs(h))) {
+                reused_columns.push_back(k);
+                reused_steps.push_back(r->unit_step);
+                reused.push_back(std::move(r->outputs));
+                u.reused.push_back(r->what);
+                continue;
+            }
+        }
         std::vector<double> uk = u0;
-        steps.push_back(unit_fd_step(space, k, u0[k], ctx.problem.solver.fd_step));
-        uk[k] += steps.back();
+        steps.push_back(h);
+        uk[k] += h;
         fd_columns.push_back(k);
         points.push_back(space.from_unit(uk));
+    }
+    for (std::size_t c = 0; c < reused_columns.size(); ++c) {  // one list of difference columns
+        fd_columns.push_back(reused_columns[c]);
+        steps.push_back(reused_steps[c]);
     }
     std::vector<Evaluation> fd;
     if (!points.empty()) {
@@ -101,6 +183,7 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
                 return u;
             }
     }
+    fd.insert(fd.end(), reused.begin(), reused.end());
     // 2. The Jacobian of the lab-normalised residuals in natural coordinates.
     const Rows rows = rows_of(sol.best_eval, ctx.problem);
     const std::size_t m = rows.sand.size();

@@ -189,7 +189,7 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
               {"noise_floor_rel_se", {{"modulus", st.noise_floor[0]}, {"peak_stress", st.noise_floor[1]}, {"strain_at_peak", st.noise_floor[2]}}},
               {"identifiability", {{"computed", u.computed}, {"note", u.note}, {"singular_values", u.singular_values},
                                    {"condition_number", number(u.condition)}, {"poorly_identified", u.poorly_identified},
-                                   {"difference_runs", u.fd_runs}}},
+                                   {"difference_runs", u.fd_runs}, {"difference_points_reused", u.reused}}},
               {"notes", s.notes},
               {"unmet_targets", unmet_statements(p, st)}};
     json d = json::array();
@@ -321,6 +321,8 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
                 for (const auto& w : u.poorly_identified) md << "- " << w << "\n";
                 md << "\n";
             }
+            for (const auto& r : u.reused) md << "- standard error of " << r << "\n";
+            if (!u.reused.empty()) md << "\n";
         } else {
             md << "Uncertainty: " << u.note << "\n\n";
         }

@@ -8,7 +8,9 @@
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cmath>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "calibrate/ledger.hpp"
@@ -283,23 +285,28 @@ TEST_CASE("per sand, four parameters for three targets: the blind direction is n
     }
 }
 
-TEST_CASE("twin experiment, soft bond: the shape search moves the softening factor and recovers it; D is reported", "[calibrate]") {
-    TempDir dir("cal-twin-soft");
-    auto model = cal::make_analytic_model(2, 0.001);
-    // Truth: the PB twin's parameters and ζ = 0.25 (γ fixed at 0.2). In the stand-in ζ raises
-    // D = Eε/σ per sand, by a different amount for each, so 6 targets pin down 5 parameters.
+/// A soft-bond twin problem: truth = the PB twin's parameters and ζ = 0.25 (γ fixed at 0.2). In
+/// the stand-in ζ raises D = Eε/σ per sand, by a different amount for each, so 6 targets pin
+/// down 5 parameters; ζ is the one shape parameter of the scaling path.
+static fs::path soft_twin_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& solver_keys,
+                                  const std::string& parameter_keys = "") {
     exp::MaterialParams truth = material_at(kTruth);
     truth.bond.model = BondModel::soft_bond;
     truth.bond.soft.softening_factor = 0.25;
     truth.bond.soft.cut_fraction = 0.2;
     std::vector<std::uint64_t> seeds;
     for (std::uint64_t s = 101; s <= 110; ++s) seeds.push_back(s);
-    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, kSands, truth, seeds).dump(1));
-    const fs::path cfg = test::write_problem(dir.path, "seeds = [1, 2, 3]\nbond_model = \"soft_bond\"\n",
-                                             "strain_weight = 1.0\n[parameters.softening_factor]\nfree = true\nstart = 0.6\n"
-                                             "[parameters.cut_fraction]\nfree = false\nstart = 0.2\n"
-                                             "[solver]\nmethod = \"scaling\"\nmax_runs = 500\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
-    const cal::CalibrationProblem problem = cal::load_calibration_problem(cfg);
+    test::write_text(dir / "lab_results.json", test::synthetic_lab_results(model, kSands, truth, seeds).dump(1));
+    return test::write_problem(dir, "seeds = [1, 2, 3]\nbond_model = \"soft_bond\"\n",
+                               "strain_weight = 1.0\n[parameters.softening_factor]\nfree = true\nstart = 0.6\n"
+                               "[parameters.cut_fraction]\nfree = false\nstart = 0.2\n" + parameter_keys +
+                               "[solver]\nmethod = \"scaling\"\nmax_runs = 500\n" + solver_keys + "[output]\ndir = \"out\"\n");
+}
+
+TEST_CASE("twin experiment, soft bond: the shape search moves the softening factor and recovers it; D is reported", "[calibrate]") {
+    TempDir dir("cal-twin-soft");
+    auto model = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(soft_twin_problem(dir.path, *model, "tolerance = 0.002\n"));
     REQUIRE(problem.bond_model() == BondModel::soft_bond);
     const cal::ParameterSpace space(problem.parameters, problem.base.material);
     const auto zeta = space.index_of("softening_factor");
@@ -335,4 +342,59 @@ TEST_CASE("twin experiment, soft bond: the shape search moves the softening fact
     const std::string md = cal::summary_markdown(problem, r);
     CHECK(md.find("bond model **soft_bond** (bond_replaces_contact = 1, cut_fraction = 0.2, softening_factor = 0.25") != std::string::npos);
     CHECK(md.find("D = E·ε_peak/σ_peak lab") != std::string::npos);
+}
+
+TEST_CASE("the uncertainty of a shape parameter reuses a shape-search evaluation: no new runs, the same standard error",
+          "[calibrate]") {
+    // With the homogeneity verified, a shape-search trial rescaled to the best point's moduli and
+    // strengths is a point on the shape column: its secant replaces a new difference point. The
+    // oracle: the standard error of ζ from a tiny new forward difference (the derivative), against
+    // the one from the reused trial; the stand-in is smooth, so they differ only by curvature.
+    // ζ is the only shape parameter (c̄/σ̄c and the scatter fixed at the truth), so every trial
+    // lies on its column.
+    auto model = cal::make_analytic_model(2, 0.001);
+    const std::string fixed = "[parameters.cohesion_ratio]\nfree = false\nstart = 1.6\n[parameters.strength_cv]\nfree = false\nstart = 0.25\n";
+    TempDir fresh_dir("cal-reuse-fresh");
+    const cal::CalibrationProblem fresh = cal::load_calibration_problem(soft_twin_problem(fresh_dir.path, *model, "fd_step = 1e-4\n", fixed));
+    const cal::CalibrationResult r_fresh = cal::run_calibration(fresh, *model);
+    const cal::Uncertainty& u_fresh = r_fresh.stages.at(0).uncertainty;
+    REQUIRE(u_fresh.computed);
+    REQUIRE(u_fresh.reused.empty());  // no trial within [h/2, 3h] of a 1e-4 step
+    const int per_eval = static_cast<int>(kSands.size() * 3);
+    CHECK(u_fresh.fd_runs == per_eval);
+
+    // The trial nearest the best point, and a difference step of exactly that distance.
+    const cal::ParameterSpace space(fresh.parameters, fresh.base.material);
+    const std::size_t zeta = *space.index_of("softening_factor");
+    const std::vector<double> best = best_of(r_fresh);
+    double nearest = 1.0;
+    for (const cal::Evaluation& e : r_fresh.history)
+        if (e.label == "shape") {
+            const double d = std::fabs(space.to_unit(e.values)[zeta] - space.to_unit(best)[zeta]);
+            if (d > 1e-6) nearest = std::min(nearest, d);
+        }
+    REQUIRE(nearest < 0.3);
+    const cal::ParameterSpec& spec = space.free(zeta);
+    REQUIRE(spec.log_scale);
+    const double fd_step = std::expm1(nearest * std::log(spec.upper / spec.lower));  // unit step = nearest
+
+    TempDir reuse_dir("cal-reuse");
+    std::ostringstream keys;
+    keys.precision(17);
+    keys << "fd_step = " << fd_step << "\n";
+    const cal::CalibrationProblem reuse = cal::load_calibration_problem(soft_twin_problem(reuse_dir.path, *model, keys.str(), fixed));
+    const cal::CalibrationResult r_reuse = cal::run_calibration(reuse, *model);
+    const cal::Uncertainty& u_reuse = r_reuse.stages.at(0).uncertainty;
+    REQUIRE(u_reuse.computed);
+    CHECK(best_of(r_reuse) == best);  // fd_step does not touch the scaling path's solve
+    CHECK(u_reuse.fd_runs == 0);
+    REQUIRE(u_reuse.reused.size() == 1);
+    INFO(u_reuse.reused[0]);
+    CHECK(u_reuse.reused[0].rfind("softening_factor: difference point from evaluation ", 0) == 0);
+    CHECK(r_reuse.runs_used == r_fresh.runs_used - per_eval);
+    INFO("se(ln zeta): derivative " << u_fresh.std_error_natural[zeta] << ", reused secant over " << nearest << " of the box "
+                                    << u_reuse.std_error_natural[zeta]);
+    CHECK(u_reuse.std_error_natural[zeta] == Approx(u_fresh.std_error_natural[zeta]).epsilon(0.05));
+    for (std::size_t k = 0; k < space.size(); ++k)
+        if (k != zeta) CHECK(u_reuse.std_error_natural[k] == Approx(u_fresh.std_error_natural[k]).epsilon(0.15));
 }

@@ -7,6 +7,7 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/problem.hpp"
 #include "experiments/packing_cache.hpp"
+#include "experiments/paste_cache.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 
@@ -58,6 +59,8 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
         {"bad seeds", "seeds = [1, 1]\n", "", "distinct seeds"},
         {"edge under 3 x the largest grain", "edge_mm = 2.0\n", "", "key 'calibration.edge_mm': genesis.edge"},
         {"edge not positive", "edge_mm = -3.5\n", "", "key 'calibration.edge_mm' must be a positive cube edge"},
+        {"paste size on a parallel-bond base", "paste_diameter_mm = 0.08\n", "",
+         "key 'calibration.paste_diameter_mm' needs a base config with specimen.representation = \"explicit_paste\""},
     };
     for (const Case& c : cases) {
         DYNAMIC_SECTION(c.name) {
@@ -311,4 +314,29 @@ TEST_CASE("the shipped explicit-paste calibration config frees the paste bond st
     std::vector<std::string> twin_free;
     for (std::size_t k = 0; k < twin_space.size(); ++k) twin_free.push_back(twin_space.free(k).name);
     CHECK(twin_free == free);
+
+    // The 0.08 mm paste calibration: the same problem with one paste size replaced.
+    std::string fine_text = bytes(root / "calibrate" / "configs" / "joint_paste_080.toml");
+    fine_text = replace_once(fine_text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
+    fine_text = replace_once(fine_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+    test::write_text(dir.path / "joint_paste_080.toml", fine_text);
+    const cal::CalibrationProblem fine = cal::load_calibration_problem(dir.path / "joint_paste_080.toml");
+    REQUIRE(fine.base.specimen.paste);
+    CHECK(fine.base.specimen.paste->paste.min_diameter == Approx(0.08e-3));
+    CHECK(fine.base.specimen.paste->paste.max_diameter == Approx(0.08e-3));
+    CHECK(p.base.specimen.paste->paste.min_diameter == Approx(0.1e-3));
+    CHECK(fine.sands == p.sands);
+    CHECK(fine.seeds == p.seeds);
+    CHECK(fine.base.specimen.genesis.edge == p.base.specimen.genesis.edge);
+    CHECK(fine.weights.strain == p.weights.strain);
+    // The paste size is part of the paste specimen's key, and so of the ledger's model fingerprint.
+    CHECK(exp::paste_packing_key(1, *fine.base.specimen.paste) != exp::paste_packing_key(1, *p.base.specimen.paste));
+    const cal::ParameterSpace fine_space(fine.parameters, fine.base.material);
+    std::vector<std::string> fine_free;
+    for (std::size_t k = 0; k < fine_space.size(); ++k) fine_free.push_back(fine_space.free(k).name);
+    CHECK(fine_free == free);
+    const std::string bad = replace_once(fine_text, "paste_diameter_mm = 0.08", "paste_diameter_mm = -0.08");
+    test::write_text(dir.path / "bad_paste.toml", bad);
+    CHECK_THROWS_WITH(cal::load_calibration_problem(dir.path / "bad_paste.toml"),
+                      Contains("bad_paste.toml") && Contains("must be a positive paste particle diameter"));
 }
