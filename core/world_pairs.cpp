@@ -43,11 +43,10 @@ namespace {
 constexpr int kLanes = 32;
 constexpr std::int64_t kPrefetchAhead = 16;  ///< pairs: particle j's state (a random access)
 constexpr std::int64_t kStreamAhead = 32;    ///< pairs: the pair's bond, constants and output slot
-/// The streams are prefetched only when the pass's arrays outgrow a last-level cache of this
-/// size (the development machine's L3, 32 MiB; sysconf reports the host's 384 MiB there). In
-/// cache the prefetches are extra instructions (-1..2 % at N = 2e4, 14 MB); from memory they
-/// save 14 % of the pass (N = 2e5, 125 MB).
-constexpr std::size_t kPrefetchAboveBytes = std::size_t{32} << 20;
+// The streams are prefetched only when the pass's arrays outgrow a last-level cache
+// (SimParams::stream_prefetch_above_bytes: the development machine's L3, 32 MiB; sysconf
+// reports the host's 384 MiB there). In cache the prefetches are extra instructions (-1..2 % at
+// N = 2e4, 14 MB); from memory they save 14 % of the pass (N = 2e5, 125 MB).
 
 /// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
 struct Lanes {
@@ -161,7 +160,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     const std::size_t pass_bytes = pairs_.size() * (sizeof(Pair) + sizeof(PairOutput)) +
                                    bonds_.size() * (sizeof(ParallelBond) + sizeof(BondConstants) + sizeof(double)) +
                                    particles_.size() * (3 * sizeof(Vec3) + sizeof(double));
-    const bool prefetch_streams = pass_bytes > kPrefetchAboveBytes;
+    const bool prefetch_streams = pass_bytes > sim_.stream_prefetch_above_bytes;
 
     struct Released {
         std::int64_t bond;
@@ -217,7 +216,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 }
                 // the streams of the pair a batch ahead (bond, bond constants, stored energy,
                 // output slot, and the pair record further on): ~10 concurrent streams at
-                // N = 2e5 outrun the hardware prefetcher (issue 10; only out of cache: kPrefetchAboveBytes)
+                // N = 2e5 outrun the hardware prefetcher (issue 10; only out of cache: stream_prefetch_above_bytes)
                 if constexpr (decltype(prefetch)::value) if (k + kStreamAhead < end) {
                     const auto ka = static_cast<std::size_t>(k + kStreamAhead);
                     __builtin_prefetch(&pair_out_[ka], 1);

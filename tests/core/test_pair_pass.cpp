@@ -35,10 +35,10 @@ BondParams bond_params() {
 }
 
 // A 12^3 bonded lattice, partly overlapping, squeezed between platens: overlapping contacts, then breaks.
-World squeezed_lattice() {
+World squeezed_lattice(const SimParams& sim = SimParams{}) {
     ContactParams contact;
     contact.effective_modulus = 1.0e9;
-    World world(jittered_cluster(12, 1.0e-3, 7), contact, SimParams{});
+    World world(jittered_cluster(12, 1.0e-3, 7), contact, sim);
     world.scale_radii(1.06);  // some neighbours overlap: contacts beside bonds
     world.install_bonds(bond_params(), 0.5e-3);
     double lo = 1e9, hi = -1e9;
@@ -85,23 +85,30 @@ TEST_CASE("fused pair pass: bond strain energy is the bond-block sum over the bo
     });
 }
 
+namespace {
+
+struct Outcome {
+    std::uint64_t hash;
+    std::vector<std::uint64_t> energy;
+    std::vector<BreakEvent> breaks;
+};
+
+Outcome squeeze(int threads, const SimParams& sim = SimParams{}) {
+    return with_threads(threads, [&] {
+        World world = squeezed_lattice(sim);
+        world.run(2500);
+        const EnergyLedger& e = world.energy();
+        return Outcome{world.state_hash(),
+                       {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping), bits(e.friction),
+                        bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
+                       world.break_events()};
+    });
+}
+
+}  // namespace
+
 TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 threads", "[core][pair_pass]") {
-    struct Outcome {
-        std::uint64_t hash;
-        std::vector<std::uint64_t> energy;
-        std::vector<BreakEvent> breaks;
-    };
-    auto run = [](int threads) {
-        return with_threads(threads, [] {
-            World world = squeezed_lattice();
-            world.run(2500);
-            const EnergyLedger& e = world.energy();
-            return Outcome{world.state_hash(),
-                           {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping),
-                            bits(e.friction), bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
-                           world.break_events()};
-        });
-    };
+    auto run = [](int threads) { return squeeze(threads); };
     const Outcome one = run(1);
     REQUIRE(one.breaks.size() > 100);
     for (int threads : {2, 3}) {
@@ -120,4 +127,20 @@ TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 thre
     // breaks are logged in bond order within a step
     for (std::size_t k = 1; k < one.breaks.size(); ++k)
         if (one.breaks[k].step == one.breaks[k - 1].step) CHECK(one.breaks[k].bond > one.breaks[k - 1].bond);
+}
+
+TEST_CASE("fused pair pass: the stream-prefetch branch gives bitwise the same results", "[core][pair_pass]") {
+    // The lattice's arrays are far under the default 32 MiB threshold, so the default pass runs
+    // without stream prefetches; with the threshold at 0 the other compiled branch runs.
+    SimParams prefetching;
+    prefetching.stream_prefetch_above_bytes = 0;
+    const Outcome plain = squeeze(1);
+    REQUIRE(plain.breaks.size() > 100);
+    for (int threads : {1, 2}) {
+        INFO("threads " << threads);
+        const Outcome other = squeeze(threads, prefetching);
+        CHECK(other.hash == plain.hash);
+        CHECK(other.energy == plain.energy);
+        CHECK(other.breaks.size() == plain.breaks.size());
+    }
 }
