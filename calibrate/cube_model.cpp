@@ -40,6 +40,13 @@ std::string material_key(const exp::MaterialParams& m) {
     // Another bond law than the parallel bond: its name and every table row of its own, so a
     // parallel-bond run is never served for another model (parallel-bond keys are unchanged).
     std::string key = buf;
+    // Explicit paste: the interfacial-zone factors, calibratable since session 7; appended only
+    // when they differ from 1, so the runs of earlier paste ledgers (factors 1) keep their keys.
+    const auto& f = m.families;
+    if (f.itz_strength_factor != 1.0 || f.itz_modulus_factor != 1.0) {
+        std::snprintf(buf, sizeof buf, " itz_s=%a itz_m=%a", f.itz_strength_factor, f.itz_modulus_factor);
+        key += buf;
+    }
     if (b.model == BondModel::parallel_bond) return key;
     key += std::string(" model=") + bond_model_name(b.model);
     for (const exp::MaterialParameter& p : exp::material_table()) {

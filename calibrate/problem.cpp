@@ -164,6 +164,15 @@ void check_model_of(Context& ctx, const exp::MaterialParameter& row, BondModel m
                          "): set calibration.bond_model or remove [parameters." + std::string(row.key) + "]");
 }
 
+// The interfacial-zone factors act on explicit-paste specimens only (a parallel-bond specimen has
+// no paste-sand bonds: the parameter would be a direction the targets cannot see).
+void check_representation_of(Context& ctx, const std::string& name, const exp::CubeConfig& base, int line) {
+    if (name.rfind("itz_", 0) != 0 || base.specimen.paste) return;
+    throw InputError(ctx.file, line,
+                     "parameter '" + name + "' applies to explicit-paste specimens only, but the base config's "
+                     "specimen.representation is \"" + base.representation + "\": remove [parameters." + name + "]");
+}
+
 // Integer parameters (element counts) are never free, and their value is a whole number.
 void check_integer(Context& ctx, const exp::MaterialParameter& row, const ParameterSpec& spec) {
     if (row.calibration != exp::Calibration::fixed_only) return;
@@ -194,6 +203,7 @@ void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& 
             }
             if (!node.is_table()) throw InputError(ctx.file, line_of(node), "'parameters." + name + "' must be a table");
             check_model_of(ctx, *exp::find_material_parameter(name), p.base.material.bond.model, line_of(node));
+            check_representation_of(ctx, name, p.base, line_of(node));
             ParameterSpec spec = specs.count(name) ? specs[name] : default_parameter(name, p.base.material);
             Section s(ctx, *n->as_table(), name);
             s.boolean("free", spec.free);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "calibrate/cube_model.hpp"
 #include "calibrate/ledger.hpp"
 #include "calibrate/problem.hpp"
 #include "experiments/packing_cache.hpp"
@@ -59,6 +60,8 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
         {"bad seeds", "seeds = [1, 1]\n", "", "distinct seeds"},
         {"edge under 3 x the largest grain", "edge_mm = 2.0\n", "", "key 'calibration.edge_mm': genesis.edge"},
         {"edge not positive", "edge_mm = -3.5\n", "", "key 'calibration.edge_mm' must be a positive cube edge"},
+        {"ITZ factor on a parallel-bond base", "", "[parameters.itz_strength_factor]\nfree = true\n",
+         "parameter 'itz_strength_factor' applies to explicit-paste specimens only"},
         {"paste size on a parallel-bond base", "paste_diameter_mm = 0.08\n", "",
          "key 'calibration.paste_diameter_mm' needs a base config with specimen.representation = \"explicit_paste\""},
     };
@@ -335,6 +338,24 @@ TEST_CASE("the shipped explicit-paste calibration config frees the paste bond st
     std::vector<std::string> fine_free;
     for (std::size_t k = 0; k < fine_space.size(); ++k) fine_free.push_back(fine_space.free(k).name);
     CHECK(fine_free == free);
+    // The interfacial-zone factors as calibration rows: shape parameters that set the paste-sand
+    // bonds' factors of each run, and with them its ledger key.
+    test::write_text(dir.path / "itz.toml", fine_text + "\n[parameters.itz_strength_factor]\nfree = true\nstart = 0.7\n"
+                                                        "[parameters.itz_modulus_factor]\nfree = false\nstart = 0.8\n");
+    const cal::CalibrationProblem itz = cal::load_calibration_problem(dir.path / "itz.toml");
+    const cal::ParameterSpace itz_space(itz.parameters, itz.base.material);
+    const auto itz_k = itz_space.index_of("itz_strength_factor");
+    REQUIRE(itz_k.has_value());
+    CHECK(itz_space.free(*itz_k).role() == cal::Role::shape);
+    CHECK(itz_space.free(*itz_k).log_scale);
+    const exp::MaterialParams itz_m = itz_space.material(itz_space.start());
+    CHECK(itz_m.families.itz_strength_factor == 0.7);
+    CHECK(itz_m.families.itz_modulus_factor == 0.8);
+    CHECK(itz_m.bond.tensile_strength_mean == fine_space.material(fine_space.start()).bond.tensile_strength_mean);
+    const std::string key_itz = cal::material_key(itz_m), key_one = cal::material_key(fine_space.material(fine_space.start()));
+    CHECK(key_itz != key_one);
+    CHECK(key_one.find("itz") == std::string::npos);  // factors 1: the keys of earlier paste ledgers
+
     const std::string bad = replace_once(fine_text, "paste_diameter_mm = 0.08", "paste_diameter_mm = -0.08");
     test::write_text(dir.path / "bad_paste.toml", bad);
     CHECK_THROWS_WITH(cal::load_calibration_problem(dir.path / "bad_paste.toml"),
