@@ -125,6 +125,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     if (!fs::exists(base))
         throw InputError(ctx.file, ctx.keys["calibration.base"].line, "key 'calibration.base': file " + base.string() + " not found");
     p.base = exp::load_cube_config(base);
+    p.base_file = base;
     if (!bond_model.empty()) {  // overrides the base config's [material] model
         const auto model = parse_bond_model(bond_model);
         if (!model)

@@ -63,6 +63,7 @@ struct SolverSettings {
 
 struct CalibrationProblem {
     std::filesystem::path file;
+    std::filesystem::path base_file;      ///< the base cube config ([calibration] base)
     exp::CubeConfig base;
     std::string model = "dem";            ///< "dem" or "analytic" (the stand-in, for trials and tests)
     Mode mode = Mode::joint;

@@ -7,6 +7,7 @@
 #include "calibrate/objective.hpp"
 #include "calibrate/target_tolerance.hpp"
 #include "common/atomic_file.hpp"
+#include "reports/calibrated_config.hpp"
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"
 #include "common/number_format.hpp"
@@ -421,6 +422,8 @@ void write_calibration_outputs(const CalibrationProblem& p, const CalibrationRes
     common::write_file_atomically(p.out_dir / "summary.md", summary_markdown(p, r));
     common::write_file_atomically(p.out_dir / "convergence.csv", convergence_csv(p, r));
     common::write_file_atomically(p.out_dir / "curves.csv", curves_csv(p, r));
+    if (p.base_file.empty()) return;  // a problem built in code (tests) has no base file to copy
+    common::write_files_atomically(calibrated_cube_configs(p, r));
 }
 
 }  // namespace gradem::cal

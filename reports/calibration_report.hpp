@@ -6,6 +6,7 @@
 //   convergence.csv  every evaluation in order: budget used, objective, parameters, outputs
 //   curves.csv       simulated stress-strain curves at the calibrated parameters (each seed)
 //                    and the lab's mean curve (Popovics through the lab means)
+//   calibrated-<sand>.toml  the base cube config at the calibrated parameters (calibrated_config.hpp)
 // and the one-line brief report for the terminal.
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -21,7 +22,7 @@ std::string convergence_csv(const CalibrationProblem& problem, const Calibration
 std::string curves_csv(const CalibrationProblem& problem, const CalibrationResult& result);
 std::string brief_report(const CalibrationProblem& problem, const CalibrationResult& result);
 
-/// Writes the four files into problem.out_dir.
+/// Writes the files above into problem.out_dir.
 void write_calibration_outputs(const CalibrationProblem& problem, const CalibrationResult& result);
 
 }  // namespace gradem::cal

@@ -99,6 +99,33 @@ TEST_CASE("explicit paste: a tiny paste calibration runs end to end and moves to
     const double got = r.stages.at(0).solution.best.at(0);  // E* [GPa]
     INFO("E* from 11 GPa towards 15 GPa: " << got);
     CHECK(std::fabs(got - 15.0) < std::fabs(11.0 - 15.0));
+
+    // calibrated-pre-blended.toml: the base config at the best point, loadable elsewhere (absolute
+    // paths), whose cube test is the calibration's run at the best point, bitwise.
+    fs::create_directories(problem.out_dir);
+    cal::write_calibration_outputs(problem, r);
+    const fs::path written = problem.out_dir / "calibrated-pre-blended.toml";
+    REQUIRE(fs::exists(written));
+    TempDir elsewhere("cal-paste-calibrated");
+    fs::copy_file(written, elsewhere.path / "calibrated.toml");
+    const exp::CubeConfig calibrated = exp::load_cube_config(elsewhere.path / "calibrated.toml");
+    CHECK(calibrated.material.contact.effective_modulus == got * 1e9);
+    CHECK(calibrated.material.bond.effective_modulus == got * 1e9);
+    CHECK(calibrated.material.bond.tensile_strength_mean == cube.material.bond.tensile_strength_mean);
+    REQUIRE(calibrated.specimen.paste);
+    CHECK(calibrated.specimen.paste->paste.min_diameter == cube.specimen.paste->paste.min_diameter);
+    CHECK(calibrated.cache_dir == fs::absolute(dir.path / "cache"));
+    const cal::RunOutcome* at_best = nullptr;
+    for (const cal::Evaluation& e : r.history)
+        if (e.values == r.stages.at(0).solution.best && !e.runs.empty()) at_best = &e.runs.front();
+    REQUIRE(at_best != nullptr);
+    auto rerun = cal::make_dem_model(calibrated, {"pre-blended"});
+    rerun->load_prepared({1});
+    const cal::RunOutcome again = rerun->run({0, 1, calibrated.material}, 0.0);
+    REQUIRE(again.ok());
+    CHECK(again.modulus_pa == at_best->modulus_pa);
+    CHECK(again.peak_pa == at_best->peak_pa);
+    CHECK(again.steps == at_best->steps);
 }
 
 TEST_CASE("DEM tension model: the direct-tension test of `gradem tension` on the cached packing, own fingerprint",

@@ -1,0 +1,119 @@
+#include "reports/calibrated_config.hpp"
+
+#include <toml++/toml.h>
+
+#include <cctype>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "experiments/material_table.hpp"
+
+namespace gradem::cal {
+namespace {
+
+namespace fs = std::filesystem;
+
+toml::table& table_of(toml::table& root, const char* name) {
+    if (!root.contains(name) || !root[name].is_table()) root.insert_or_assign(name, toml::table{});
+    return *root[name].as_table();
+}
+
+/// The sand's name made a file-name part ("Van Buren" -> "Van_Buren").
+std::string tag_of(const std::string& sand) {
+    std::string tag;
+    for (char c : sand) tag += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+    return tag;
+}
+
+std::string file_name(const std::string& sand) { return "calibrated-" + tag_of(sand) + ".toml"; }
+
+/// A config value x that the reader turns into exactly `si` (x · to_si == si), so the config
+/// reproduces the calibration's runs bitwise: si / to_si, or a neighbour a few ulps away (the
+/// quotient's rounding can miss by one). An SI value no decimal reaches (rare: a product of two
+/// calibrated values) keeps the nearest, and the run differs in the last bits.
+double exact_config(double si, const std::function<double(double)>& to_si_of, double guess) {
+    for (int steps = 0; steps <= 4; ++steps)
+        for (double towards : {HUGE_VAL, -HUGE_VAL}) {
+            double x = guess;
+            for (int k = 0; k < steps; ++k) x = std::nextafter(x, towards);
+            if (to_si_of(x) == si) return x;
+        }
+    return guess;
+}
+
+double exact_config(double si, double to_si) {
+    return exact_config(si, [to_si](double x) { return x * to_si; }, si / to_si);
+}
+
+/// The row's value in config units that the config reader maps back to m's SI value exactly.
+double exact_row_value(const exp::MaterialParameter& row, const exp::MaterialParams& m) {
+    const auto si_of = [&](double x) {
+        exp::MaterialParams t = m;
+        exp::set_config_value(row, t, x);
+        return row.get(t);
+    };
+    return exact_config(row.get(m), si_of, exp::config_value(row, m));
+}
+
+/// The material table's rows that the bond model uses, in config units.
+void write_material(toml::table& material, const exp::MaterialParams& m) {
+    material.insert_or_assign("model", std::string(bond_model_name(m.bond.model)));
+    for (const exp::MaterialParameter& row : exp::material_table()) {
+        if (!row.in_config || !row.applies_to(m.bond.model)) continue;
+        const std::string key(row.key);
+        if (row.flag) material.insert_or_assign(key, row.get_int(m) != 0);
+        else if (row.integer) material.insert_or_assign(key, row.get_int(m));
+        else material.insert_or_assign(key, exact_row_value(row, m));
+    }
+}
+
+}  // namespace
+
+std::string calibrated_cube_config(const CalibrationProblem& p, const exp::MaterialParams& m, const std::string& sand,
+                                   const std::string& stage_label) {
+    // 1. The base config as written (every section the calibration did not change stays).
+    toml::table root = toml::parse_file(p.base_file.string());
+    // 2. The specimen: this sand, the calibration's edge and paste size, absolute paths.
+    toml::table& specimen = table_of(root, "specimen");
+    specimen.insert_or_assign("sand", sand);
+    if (!p.base.dataset.empty()) specimen.insert_or_assign("dataset", fs::absolute(p.base.dataset).string());
+    if (!p.base.sieve_csv.empty()) specimen.insert_or_assign("sieve_csv", fs::absolute(p.base.sieve_csv).string());
+    constexpr double kMm = 1e-3;  // [m] per config mm
+    table_of(root, "genesis").insert_or_assign("edge_mm", exact_config(p.base.specimen.genesis.edge, kMm));
+    if (p.base.specimen.paste) {
+        toml::table& paste = table_of(root, "paste");
+        paste.insert_or_assign("min_diameter_mm", exact_config(p.base.specimen.paste->paste.min_diameter, kMm));
+        paste.insert_or_assign("max_diameter_mm", exact_config(p.base.specimen.paste->paste.max_diameter, kMm));
+        paste.insert_or_assign("itz_strength_factor", m.families.itz_strength_factor);
+        paste.insert_or_assign("itz_modulus_factor", m.families.itz_modulus_factor);
+    }
+    // 3. The calibrated material.
+    write_material(table_of(root, "material"), m);
+    // 4. Outputs inside the calibration's folder; the packing cache shared with it.
+    toml::table& output = table_of(root, "output");
+    output.insert_or_assign("dir", fs::absolute(p.out_dir / ("compress-" + tag_of(sand))).string());
+    output.insert_or_assign("cache_dir", fs::absolute(p.base.cache_dir).string());
+
+    std::ostringstream text;
+    text << "# The calibrated material of `gradem calibrate " << p.file.filename().string() << "` (" << stage_label
+         << "), sand '" << sand << "',\n# on its base cube config " << fs::absolute(p.base_file).string()
+         << "\n# (comments dropped; [material] holds every parameter of the bond model, config units).\n"
+         << "#   gradem compress " << file_name(sand) << "\n\n"
+         << root << "\n";
+    return text.str();
+}
+
+std::vector<std::pair<fs::path, std::string>> calibrated_cube_configs(const CalibrationProblem& p, const CalibrationResult& r) {
+    std::vector<std::pair<fs::path, std::string>> files;
+    const ParameterSpace space(p.parameters, p.base.material);
+    for (const CalibrationStage& st : r.stages) {
+        if (st.solution.best.empty()) continue;
+        const exp::MaterialParams m = space.material(st.solution.best);
+        for (std::size_t s : st.fitted)
+            files.emplace_back(p.out_dir / file_name(p.sands[s]), calibrated_cube_config(p, m, p.sands[s], st.label));
+    }
+    return files;
+}
+
+}  // namespace gradem::cal

@@ -1,0 +1,25 @@
+#pragma once
+// The calibrated material as cube configs: for every calibrated sand, the calibration's base
+// cube config with its [material] set to the stage's best point (every row of the material table
+// the bond model uses, config units), its specimen set to that sand and to the calibration's
+// edge and paste size, its paths made absolute and its output folder inside the calibration's.
+// `gradem compress out/calibration-joint/calibrated-pre-blended.toml` then runs one cube test at
+// the calibrated parameters (another seed, a larger edge, the tension test: edit the copy).
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "calibrate/calibration.hpp"
+
+namespace gradem::cal {
+
+/// The TOML text of the base config with the calibrated material `m` for `sand`.
+std::string calibrated_cube_config(const CalibrationProblem& problem, const exp::MaterialParams& m, const std::string& sand,
+                                   const std::string& stage_label);
+
+/// (path, text) of calibrated-<sand>.toml for every sand fitted by a stage with a solution.
+std::vector<std::pair<std::filesystem::path, std::string>> calibrated_cube_configs(const CalibrationProblem& problem,
+                                                                                    const CalibrationResult& result);
+
+}  // namespace gradem::cal
