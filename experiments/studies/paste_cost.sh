@@ -8,6 +8,11 @@
 #
 #   OMP_NUM_THREADS=2 sh experiments/studies/paste_cost.sh [OUT] [GRADEM]
 #   PASTE_SIZES_MM="0.1 0.08" SANDS="pre-blended|Van Buren" ...   (the defaults)
+# With CALIBRATIONS="<calibration output folder> ..." the cases are instead the calibrated
+# configs those calibrations wrote (calibrated-<sand>.toml: each one's seed-1 test at the
+# calibrated parameters), named <folder>_<sand>:
+#   CALIBRATIONS="out/calibration-joint-paste-pb-gap out/calibration-joint-paste" \
+#       OMP_NUM_THREADS=2 sh experiments/studies/paste_cost.sh out/paste-cost-calibrated
 set -eu
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 OUT=${1:-$ROOT/out/paste-cost}
@@ -32,20 +37,31 @@ run_case() {  # $1 case name, $2 config
 }
 
 CASES=""
-IFS='|'
-for sand in $SANDS; do
-    tag=$(echo "$sand" | tr -c 'A-Za-z0-9\n' '_')
-    make_config "$ROOT/experiments/configs/calibration_cube.toml" "$OUT/pb_$tag.toml" "$sand" ""
-    run_case "pb_$tag" "$OUT/pb_$tag.toml"
-    CASES="$CASES|pb_$tag"
-    IFS=' '
-    for d in $SIZES; do
-        make_config "$ROOT/experiments/configs/paste_cube.toml" "$OUT/paste${d}_$tag.toml" "$sand" "$d"
-        run_case "paste${d}_$tag" "$OUT/paste${d}_$tag.toml"
-        CASES="$CASES|paste${d}_$tag"
+if [ -n "${CALIBRATIONS:-}" ]; then
+    for dir in $CALIBRATIONS; do
+        for cfg in "$dir"/calibrated-*.toml; do
+            [ -f "$cfg" ] || { echo "paste_cost: no calibrated-<sand>.toml in $dir (run its calibration first)" >&2; exit 2; }
+            name=$(basename "$dir")_$(basename "$cfg" .toml | sed 's/^calibrated-//')
+            run_case "$name" "$cfg"
+            CASES="$CASES|$name"
+        done
     done
+else
     IFS='|'
-done
+    for sand in $SANDS; do
+        tag=$(echo "$sand" | tr -c 'A-Za-z0-9\n' '_')
+        make_config "$ROOT/experiments/configs/calibration_cube.toml" "$OUT/pb_$tag.toml" "$sand" ""
+        run_case "pb_$tag" "$OUT/pb_$tag.toml"
+        CASES="$CASES|pb_$tag"
+        IFS=' '
+        for d in $SIZES; do
+            make_config "$ROOT/experiments/configs/paste_cube.toml" "$OUT/paste${d}_$tag.toml" "$sand" "$d"
+            run_case "paste${d}_$tag" "$OUT/paste${d}_$tag.toml"
+            CASES="$CASES|paste${d}_$tag"
+        done
+        IFS='|'
+    done
+fi
 unset IFS
 
 /usr/bin/python3 - "$OUT" "$ROOT/out/lab/lab_results.json" "$CASES" <<'PY'

@@ -318,6 +318,21 @@ TEST_CASE("the shipped explicit-paste calibration config frees the paste bond st
     for (std::size_t k = 0; k < twin_space.size(); ++k) twin_free.push_back(twin_space.free(k).name);
     CHECK(twin_free == free);
 
+    // The twin with the bonding gap a free length: the same specimens, the gap joins the free set.
+    std::string gap_text = bytes(root / "calibrate" / "configs" / "joint_paste_pb_gap.toml");
+    gap_text = replace_once(gap_text, "\"../../experiments/configs/calibration_cube.toml\"", quoted_pb_base);
+    gap_text = replace_once(gap_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+    test::write_text(dir.path / "joint_paste_pb_gap.toml", gap_text);
+    const cal::CalibrationProblem gap = cal::load_calibration_problem(dir.path / "joint_paste_pb_gap.toml");
+    CHECK(gap.sands == p.sands);
+    CHECK(gap.seeds == p.seeds);
+    CHECK(gap.base.specimen.genesis.edge == p.base.specimen.genesis.edge);
+    CHECK(gap.weights.strain == p.weights.strain);
+    const cal::ParameterSpace gap_space(gap.parameters, gap.base.material);
+    std::vector<std::string> gap_free;
+    for (std::size_t k = 0; k < gap_space.size(); ++k) gap_free.push_back(gap_space.free(k).name);
+    CHECK(gap_free == std::vector<std::string>{"effective_modulus_gpa", "bond_gap_um", "tensile_strength_mpa", "cohesion_ratio"});
+
     // The 0.08 mm paste calibration: the same problem with one paste size replaced.
     std::string fine_text = bytes(root / "calibrate" / "configs" / "joint_paste_080.toml");
     fine_text = replace_once(fine_text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
