@@ -82,7 +82,7 @@ for c in cases:
     paste = j.get("paste", {}).get("paste_count", 0)
     fmt = lambda v, s: "n/a" if v is None else s.format(v)
     print(f"| {c} | {sand} | {r['particles']} ({paste}) | {r['bonds']} | {r['time_step_s']:.3g} | {r['steps']} | "
-          f"{r['wall_seconds']:.0f} | {fmt(r['particle_steps_per_s'], '{:.3g}')} | {fmt(j['chord_modulus_mpa'] and j['chord_modulus_mpa'] / 1000, '{:.2f}')} | "
+          f"{r['wall_seconds']:.1f} | {fmt(r['particle_steps_per_s'], '{:.3g}')} | {fmt(j['chord_modulus_mpa'] and j['chord_modulus_mpa'] / 1000, '{:.2f}')} | "
           f"{fmt(j['peak_stress_mpa'], '{:.2f}')} | {fmt(j['strain_at_peak'], '{:.5f}')} |")
 for name, s in lab.items():
     print(f"| lab | {name} | | | | | | | {s['chord_modulus_mpa']['mean'] / 1000:.2f} | {s['peak_stress_mpa']['mean']:.2f} | {s['strain_at_peak']['mean']:.5f} |")
