@@ -333,6 +333,19 @@ TEST_CASE("the shipped explicit-paste calibration config frees the paste bond st
     for (std::size_t k = 0; k < gap_space.size(); ++k) gap_free.push_back(gap_space.free(k).name);
     CHECK(gap_free == std::vector<std::string>{"effective_modulus_gpa", "bond_gap_um", "tensile_strength_mpa", "cohesion_ratio"});
 
+    // The paste calibration with the ITZ strength free: a second shape parameter.
+    std::string itz_text = bytes(root / "calibrate" / "configs" / "joint_paste_itz.toml");
+    itz_text = replace_once(itz_text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
+    itz_text = replace_once(itz_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+    test::write_text(dir.path / "joint_paste_itz.toml", itz_text);
+    const cal::CalibrationProblem itz_problem = cal::load_calibration_problem(dir.path / "joint_paste_itz.toml");
+    CHECK(itz_problem.sands == p.sands);
+    CHECK(itz_problem.seeds == p.seeds);
+    const cal::ParameterSpace itz_problem_space(itz_problem.parameters, itz_problem.base.material);
+    std::vector<std::string> itz_free;
+    for (std::size_t k = 0; k < itz_problem_space.size(); ++k) itz_free.push_back(itz_problem_space.free(k).name);
+    CHECK(itz_free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "itz_strength_factor"});
+
     // The 0.08 mm paste calibration: the same problem with one paste size replaced.
     std::string fine_text = bytes(root / "calibrate" / "configs" / "joint_paste_080.toml");
     fine_text = replace_once(fine_text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
