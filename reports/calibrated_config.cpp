@@ -110,7 +110,9 @@ std::vector<std::pair<fs::path, std::string>> calibrated_cube_configs(const Cali
     for (const CalibrationStage& st : r.stages) {
         if (st.solution.best.empty()) continue;
         const exp::MaterialParams m = space.material(st.solution.best);
-        for (std::size_t s : st.fitted)
+        std::vector<std::size_t> sands = st.fitted;  // study mode: the predicted sands run the same parameters
+        sands.insert(sands.end(), st.predicted.begin(), st.predicted.end());
+        for (std::size_t s : sands)
             files.emplace_back(p.out_dir / file_name(p.sands[s]), calibrated_cube_config(p, m, p.sands[s], st.label));
     }
     return files;
