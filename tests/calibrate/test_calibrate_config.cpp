@@ -277,97 +277,86 @@ TEST_CASE("the shipped soft-bond and flat-joint calibration configs load within 
     }
 }
 
-TEST_CASE("the shipped explicit-paste calibration config frees the paste bond stiffness and strengths", "[calibrate][paste]") {
+namespace {
+
+/// A shipped calibration config (calibrate/configs/<name>) copied into `dir` with its base cube
+/// config made absolute and its lab results the test's.
+cal::CalibrationProblem load_shipped(const fs::path& dir, const std::string& name, const std::string& base_config) {
+    const fs::path root = fs::path(GRADEM_SOURCE_DIR);
+    std::string text = bytes(root / "calibrate" / "configs" / name);
+    std::string relative = "\"../../experiments/configs/", absolute = "\"";  // built by += : GCC 12's
+    relative += base_config;                                                    // -Wrestrict misfires on
+    relative += "\"";                                                           // a chain of operator+
+    absolute += (root / "experiments" / "configs" / base_config).string();
+    absolute += "\"";
+    text = replace_once(text, relative, absolute);
+    text = replace_once(text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
+    test::write_text(dir / name, text);
+    return cal::load_calibration_problem(dir / name);
+}
+
+std::vector<std::string> free_names(const cal::CalibrationProblem& p) {
+    const cal::ParameterSpace space(p.parameters, p.base.material);
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < space.size(); ++k) names.push_back(space.free(k).name);
+    return names;
+}
+
+/// The same sands, seeds, edge and strain weight: a fair comparison of two calibrations.
+void check_same_specimens(const cal::CalibrationProblem& a, const cal::CalibrationProblem& b) {
+    CHECK(a.sands == b.sands);
+    CHECK(a.seeds == b.seeds);
+    CHECK(a.base.specimen.genesis.edge == b.base.specimen.genesis.edge);
+    CHECK(a.weights.strain == b.weights.strain);
+}
+
+}  // namespace
+
+TEST_CASE("the shipped explicit-paste calibration configs: paste bond stiffness and strengths free, twins on the same specimens",
+          "[calibrate][paste]") {
     TempDir dir("cal-shipped-paste");
     write_lab(dir.path);
-    const fs::path root = fs::path(GRADEM_SOURCE_DIR);
-    std::string text = bytes(root / "calibrate" / "configs" / "joint_paste.toml");
-    std::string quoted_base = "\"";
-    quoted_base += (root / "experiments" / "configs" / "paste_cube.toml").string();
-    quoted_base += "\"";
-    text = replace_once(text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
-    text = replace_once(text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
-    test::write_text(dir.path / "joint_paste.toml", text);
-    const cal::CalibrationProblem p = cal::load_calibration_problem(dir.path / "joint_paste.toml");
+    const cal::CalibrationProblem p = load_shipped(dir.path, "joint_paste.toml", "paste_cube.toml");
     REQUIRE(p.base.specimen.paste);  // the base cube is an explicit-paste specimen
     CHECK(p.base.representation == "explicit_paste");
     const cal::ParameterSpace space(p.parameters, p.base.material);
-    std::vector<std::string> free;
-    for (std::size_t k = 0; k < space.size(); ++k) free.push_back(space.free(k).name);
+    const std::vector<std::string> free = free_names(p);
     CHECK(free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio"});  // cv fixed
     CHECK_FALSE(space.material(space.start()).invalid_reason().has_value());
 
     // Its parallel-bond twin: the same sands, edge, seeds, free parameters, targets and solver.
-    std::string twin_text = bytes(root / "calibrate" / "configs" / "joint_paste_pb.toml");
-    std::string quoted_pb_base = "\"";
-    quoted_pb_base += test::calibration_base_config().string();
-    quoted_pb_base += "\"";
-    twin_text = replace_once(twin_text, "\"../../experiments/configs/calibration_cube.toml\"", quoted_pb_base);
-    twin_text = replace_once(twin_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
-    test::write_text(dir.path / "joint_paste_pb.toml", twin_text);
-    const cal::CalibrationProblem twin = cal::load_calibration_problem(dir.path / "joint_paste_pb.toml");
+    const cal::CalibrationProblem twin = load_shipped(dir.path, "joint_paste_pb.toml", "calibration_cube.toml");
     CHECK(twin.base.representation == "parallel_bonds");
-    CHECK(twin.sands == p.sands);
-    CHECK(twin.seeds == p.seeds);
-    CHECK(twin.base.specimen.genesis.edge == p.base.specimen.genesis.edge);
+    check_same_specimens(twin, p);
     CHECK(twin.solver.method == p.solver.method);
     CHECK(twin.solver.max_runs == p.solver.max_runs);
-    CHECK(twin.weights.strain == p.weights.strain);
-    const cal::ParameterSpace twin_space(twin.parameters, twin.base.material);
-    std::vector<std::string> twin_free;
-    for (std::size_t k = 0; k < twin_space.size(); ++k) twin_free.push_back(twin_space.free(k).name);
-    CHECK(twin_free == free);
+    CHECK(free_names(twin) == free);
 
     // The twin with the bonding gap a free length: the same specimens, the gap joins the free set.
-    std::string gap_text = bytes(root / "calibrate" / "configs" / "joint_paste_pb_gap.toml");
-    gap_text = replace_once(gap_text, "\"../../experiments/configs/calibration_cube.toml\"", quoted_pb_base);
-    gap_text = replace_once(gap_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
-    test::write_text(dir.path / "joint_paste_pb_gap.toml", gap_text);
-    const cal::CalibrationProblem gap = cal::load_calibration_problem(dir.path / "joint_paste_pb_gap.toml");
-    CHECK(gap.sands == p.sands);
-    CHECK(gap.seeds == p.seeds);
-    CHECK(gap.base.specimen.genesis.edge == p.base.specimen.genesis.edge);
-    CHECK(gap.weights.strain == p.weights.strain);
-    const cal::ParameterSpace gap_space(gap.parameters, gap.base.material);
-    std::vector<std::string> gap_free;
-    for (std::size_t k = 0; k < gap_space.size(); ++k) gap_free.push_back(gap_space.free(k).name);
-    CHECK(gap_free == std::vector<std::string>{"effective_modulus_gpa", "bond_gap_um", "tensile_strength_mpa", "cohesion_ratio"});
+    const cal::CalibrationProblem gap = load_shipped(dir.path, "joint_paste_pb_gap.toml", "calibration_cube.toml");
+    check_same_specimens(gap, p);
+    CHECK(free_names(gap) == std::vector<std::string>{"effective_modulus_gpa", "bond_gap_um", "tensile_strength_mpa", "cohesion_ratio"});
 
     // The paste calibration with the ITZ strength free: a second shape parameter.
-    std::string itz_text = bytes(root / "calibrate" / "configs" / "joint_paste_itz.toml");
-    itz_text = replace_once(itz_text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
-    itz_text = replace_once(itz_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
-    test::write_text(dir.path / "joint_paste_itz.toml", itz_text);
-    const cal::CalibrationProblem itz_problem = cal::load_calibration_problem(dir.path / "joint_paste_itz.toml");
-    CHECK(itz_problem.sands == p.sands);
-    CHECK(itz_problem.seeds == p.seeds);
-    const cal::ParameterSpace itz_problem_space(itz_problem.parameters, itz_problem.base.material);
-    std::vector<std::string> itz_free;
-    for (std::size_t k = 0; k < itz_problem_space.size(); ++k) itz_free.push_back(itz_problem_space.free(k).name);
-    CHECK(itz_free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "itz_strength_factor"});
+    const cal::CalibrationProblem itz_problem = load_shipped(dir.path, "joint_paste_itz.toml", "paste_cube.toml");
+    check_same_specimens(itz_problem, p);
+    CHECK(free_names(itz_problem) == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "itz_strength_factor"});
 
     // The 0.08 mm paste calibration: the same problem with one paste size replaced.
-    std::string fine_text = bytes(root / "calibrate" / "configs" / "joint_paste_080.toml");
-    fine_text = replace_once(fine_text, "\"../../experiments/configs/paste_cube.toml\"", quoted_base);
-    fine_text = replace_once(fine_text, "\"../../out/lab/lab_results.json\"", "\"lab_results.json\"");
-    test::write_text(dir.path / "joint_paste_080.toml", fine_text);
-    const cal::CalibrationProblem fine = cal::load_calibration_problem(dir.path / "joint_paste_080.toml");
+    const cal::CalibrationProblem fine = load_shipped(dir.path, "joint_paste_080.toml", "paste_cube.toml");
     REQUIRE(fine.base.specimen.paste);
     CHECK(fine.base.specimen.paste->paste.min_diameter == Approx(0.08e-3));
     CHECK(fine.base.specimen.paste->paste.max_diameter == Approx(0.08e-3));
     CHECK(p.base.specimen.paste->paste.min_diameter == Approx(0.1e-3));
-    CHECK(fine.sands == p.sands);
-    CHECK(fine.seeds == p.seeds);
-    CHECK(fine.base.specimen.genesis.edge == p.base.specimen.genesis.edge);
-    CHECK(fine.weights.strain == p.weights.strain);
+    check_same_specimens(fine, p);
     // The paste size is part of the paste specimen's key, and so of the ledger's model fingerprint.
     CHECK(exp::paste_packing_key(1, *fine.base.specimen.paste) != exp::paste_packing_key(1, *p.base.specimen.paste));
-    const cal::ParameterSpace fine_space(fine.parameters, fine.base.material);
-    std::vector<std::string> fine_free;
-    for (std::size_t k = 0; k < fine_space.size(); ++k) fine_free.push_back(fine_space.free(k).name);
-    CHECK(fine_free == free);
+    CHECK(free_names(fine) == free);
+
     // The interfacial-zone factors as calibration rows: shape parameters that set the paste-sand
     // bonds' factors of each run, and with them its ledger key.
+    const std::string fine_text = bytes(dir.path / "joint_paste_080.toml");
+    const cal::ParameterSpace fine_space(fine.parameters, fine.base.material);
     test::write_text(dir.path / "itz.toml", fine_text + "\n[parameters.itz_strength_factor]\nfree = true\nstart = 0.7\n"
                                                         "[parameters.itz_modulus_factor]\nfree = false\nstart = 0.8\n");
     const cal::CalibrationProblem itz = cal::load_calibration_problem(dir.path / "itz.toml");
