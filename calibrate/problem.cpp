@@ -165,10 +165,11 @@ void check_model_of(Context& ctx, const exp::MaterialParameter& row, BondModel m
                          "): set calibration.bond_model or remove [parameters." + std::string(row.key) + "]");
 }
 
-// The interfacial-zone factors act on explicit-paste specimens only (a parallel-bond specimen has
-// no paste-sand bonds: the parameter would be a direction the targets cannot see).
-void check_representation_of(Context& ctx, const std::string& name, const exp::CubeConfig& base, int line) {
-    if (name.rfind("itz_", 0) != 0 || base.specimen.paste) return;
+// A paste-only row (the interfacial-zone factors) needs an explicit-paste base: a parallel-bond
+// specimen has no paste-sand bonds, so the parameter would be a direction the targets cannot see.
+void check_representation_of(Context& ctx, const exp::MaterialParameter& row, const exp::CubeConfig& base, int line) {
+    if (!row.paste_only || base.specimen.paste) return;
+    const std::string name(row.key);
     throw InputError(ctx.file, line,
                      "parameter '" + name + "' applies to explicit-paste specimens only, but the base config's "
                      "specimen.representation is \"" + base.representation + "\": remove [parameters." + name + "]");
@@ -203,8 +204,9 @@ void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& 
                 throw InputError(ctx.file, line_of(node), "unknown parameter '" + name + "' (known: " + known + ")");
             }
             if (!node.is_table()) throw InputError(ctx.file, line_of(node), "'parameters." + name + "' must be a table");
-            check_model_of(ctx, *exp::find_material_parameter(name), p.base.material.bond.model, line_of(node));
-            check_representation_of(ctx, name, p.base, line_of(node));
+            const exp::MaterialParameter& row = *exp::find_material_parameter(name);
+            check_model_of(ctx, row, p.base.material.bond.model, line_of(node));
+            check_representation_of(ctx, row, p.base, line_of(node));
             ParameterSpec spec = specs.count(name) ? specs[name] : default_parameter(name, p.base.material);
             Section s(ctx, *n->as_table(), name);
             s.boolean("free", spec.free);

@@ -64,6 +64,7 @@ struct MaterialParameter {
     bool integer = false;          ///< integer-valued (counts, seeds)
     bool flag = false;             ///< a yes/no (an integer row 0/1; the config takes true/false)
     bool in_config = true;         ///< false: a calibration-only reparametrisation (no config key)
+    bool paste_only = false;       ///< acts on explicit-paste specimens only (their paste-sand bonds)
 
     // --- SI storage in MaterialParams -------------------------------------------------------
     double to_si = 1.0;            ///< SI value = config value × to_si (unless cv_of is set)

@@ -33,12 +33,13 @@ std::string file_name(const std::string& sand) { return "calibrated-" + tag_of(s
 /// quotient's rounding can miss by one). An SI value no decimal reaches (rare: a product of two
 /// calibrated values) keeps the nearest, and the run differs in the last bits.
 double exact_config(double si, const std::function<double(double)>& to_si_of, double guess) {
-    for (int steps = 0; steps <= 4; ++steps)
-        for (double towards : {HUGE_VAL, -HUGE_VAL}) {
-            double x = guess;
-            for (int k = 0; k < steps; ++k) x = std::nextafter(x, towards);
-            if (to_si_of(x) == si) return x;
-        }
+    double up = guess, down = guess;
+    for (int ulps = 0; ulps <= 4; ++ulps) {
+        if (to_si_of(up) == si) return up;
+        if (to_si_of(down) == si) return down;
+        up = std::nextafter(up, HUGE_VAL);
+        down = std::nextafter(down, -HUGE_VAL);
+    }
     return guess;
 }
 
@@ -68,13 +69,11 @@ void write_material(toml::table& material, const exp::MaterialParams& m) {
     }
 }
 
-}  // namespace
-
-std::string calibrated_cube_config(const CalibrationProblem& p, const exp::MaterialParams& m, const std::string& sand,
-                                   const std::string& stage_label) {
-    // 1. The base config as written (every section the calibration did not change stays).
-    toml::table root = toml::parse_file(p.base_file.string());
-    // 2. The specimen: this sand, the calibration's edge and paste size, absolute paths.
+/// The base config as written (`root`: every section the calibration did not change stays),
+/// with the calibrated material `m` for `sand`.
+std::string calibrated_cube_config(const CalibrationProblem& p, toml::table root, const exp::MaterialParams& m,
+                                   const std::string& sand, const std::string& stage_label) {
+    // 1. The specimen: this sand, the calibration's edge and paste size, absolute paths.
     toml::table& specimen = table_of(root, "specimen");
     specimen.insert_or_assign("sand", sand);
     if (!p.base.dataset.empty()) specimen.insert_or_assign("dataset", fs::absolute(p.base.dataset).string());
@@ -88,9 +87,9 @@ std::string calibrated_cube_config(const CalibrationProblem& p, const exp::Mater
         paste.insert_or_assign("itz_strength_factor", m.families.itz_strength_factor);
         paste.insert_or_assign("itz_modulus_factor", m.families.itz_modulus_factor);
     }
-    // 3. The calibrated material.
+    // 2. The calibrated material.
     write_material(table_of(root, "material"), m);
-    // 4. Outputs inside the calibration's folder; the packing cache shared with it.
+    // 3. Outputs inside the calibration's folder; the packing cache shared with it.
     toml::table& output = table_of(root, "output");
     output.insert_or_assign("dir", fs::absolute(p.out_dir / ("compress-" + tag_of(sand))).string());
     output.insert_or_assign("cache_dir", fs::absolute(p.base.cache_dir).string());
@@ -104,8 +103,11 @@ std::string calibrated_cube_config(const CalibrationProblem& p, const exp::Mater
     return text.str();
 }
 
+}  // namespace
+
 std::vector<std::pair<fs::path, std::string>> calibrated_cube_configs(const CalibrationProblem& p, const CalibrationResult& r) {
     std::vector<std::pair<fs::path, std::string>> files;
+    const toml::table base = toml::parse_file(p.base_file.string());  // read once, copied per sand
     const ParameterSpace space(p.parameters, p.base.material);
     for (const CalibrationStage& st : r.stages) {
         if (st.solution.best.empty()) continue;
@@ -113,7 +115,7 @@ std::vector<std::pair<fs::path, std::string>> calibrated_cube_configs(const Cali
         std::vector<std::size_t> sands = st.fitted;  // study mode: the predicted sands run the same parameters
         sands.insert(sands.end(), st.predicted.begin(), st.predicted.end());
         for (std::size_t s : sands)
-            files.emplace_back(p.out_dir / file_name(p.sands[s]), calibrated_cube_config(p, m, p.sands[s], st.label));
+            files.emplace_back(p.out_dir / file_name(p.sands[s]), calibrated_cube_config(p, base, m, p.sands[s], st.label));
     }
     return files;
 }

@@ -14,10 +14,6 @@
 
 namespace gradem::cal {
 
-/// The TOML text of the base config with the calibrated material `m` for `sand`.
-std::string calibrated_cube_config(const CalibrationProblem& problem, const exp::MaterialParams& m, const std::string& sand,
-                                   const std::string& stage_label);
-
 /// (path, text) of calibrated-<sand>.toml for every sand a stage with a solution fitted or predicted.
 std::vector<std::pair<std::filesystem::path, std::string>> calibrated_cube_configs(const CalibrationProblem& problem,
                                                                                     const CalibrationResult& result);
