@@ -78,6 +78,12 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
         CHECK(h1 == h3);
         CHECK(b1 == b2);
         CHECK(b1 == b3);
+        // Pinned like the parallel bond's hash above: a change here must be a deliberate change
+        // of that law's arithmetic, stated where the pin moves.
+        const std::uint64_t pinned_hash = model == BondModel::soft_bond ? 3663418371523151838ULL : 15108148264122955786ULL;
+        const std::size_t pinned_breaks = model == BondModel::soft_bond ? 1285 : 2655;
+        CHECK(h1 == pinned_hash);
+        CHECK(b1 == pinned_breaks);
     }
 #ifdef _OPENMP
     omp_set_num_threads(2);
