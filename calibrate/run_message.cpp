@@ -13,7 +13,7 @@ constexpr std::uint32_t kByteOrder = 0x01020304;
 // serialise it in put_material/get_material (and in material_key), then update the sizes.
 static_assert(sizeof(ContactParams) == 3 * 8, "ContactParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(SoftBondParams) == 2 * 8, "SoftBondParams changed: serialise the new field in run_message.cpp");
-static_assert(sizeof(FlatJointParams) == 2 * 4 + 8, "FlatJointParams changed: serialise the new field in run_message.cpp");
+static_assert(sizeof(FlatJointParams) == 2 * 4 + 4 * 8 + 8 /* stiffness_over_gap, padded */, "FlatJointParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* model, padded */ + sizeof(SoftBondParams) +
                                        sizeof(FlatJointParams) + 8 /* replaces_contact, padded */,
               "BondParams changed: serialise the new field in run_message.cpp");
@@ -114,6 +114,8 @@ void put_material(Writer& w, const exp::MaterialParams& m) {
     w.i64(b.flat.radial_elements);
     w.i64(b.flat.angular_elements);
     w.f64(b.flat.residual_friction);
+    for (double x : {b.flat.bonded_fraction, b.flat.gapped_fraction, b.flat.gap_ratio}) w.f64(x);
+    w.u8(b.flat.stiffness_over_gap ? 1 : 0);
     w.u8(b.replaces_contact ? 1 : 0);
     for (double x : {m.bond_gap_fraction, m.bond_gap_absolute, m.platen_friction, m.damping}) w.f64(x);
     w.f64(m.families.itz_strength_factor);
@@ -138,6 +140,8 @@ exp::MaterialParams get_material(Reader& r) {
     b.flat.radial_elements = static_cast<std::int32_t>(r.i64());
     b.flat.angular_elements = static_cast<std::int32_t>(r.i64());
     b.flat.residual_friction = r.f64();
+    for (double* x : {&b.flat.bonded_fraction, &b.flat.gapped_fraction, &b.flat.gap_ratio}) *x = r.f64();
+    b.flat.stiffness_over_gap = r.u8() != 0;
     b.replaces_contact = r.u8() != 0;
     for (double* x : {&m.bond_gap_fraction, &m.bond_gap_absolute, &m.platen_friction, &m.damping}) *x = r.f64();
     m.families.itz_strength_factor = r.f64();

@@ -16,7 +16,7 @@
 //     kModel                          the BondModel it implements
 //     Context context(params, track)  per-step constants (tan φ̄, element tables, ...)
 //     side_size(params)               doubles of per-bond side state (0: none, no memory used)
-//     install(params, normal, side)   initialises the side state of a new bond
+//     install(params, install, bond, side)  initialises a new bond (side state, state)
 //     step(ctx, bond, side, section, stiffness, kinematics, breaks) -> BondStepResult
 //     time_step_stiffness(section, stiffness, r) -> TimeStepStiffness (undamaged)
 #include <algorithm>
@@ -41,13 +41,30 @@ struct ParallelBond {
     std::int32_t slot = -1;        ///< index of the pair in the World's interaction list
     BondState state = BondState::intact;
     BondModel model = BondModel::parallel_bond;  ///< the law this bond follows
-    std::uint8_t family_pair = 0;  ///< its parameters: World::bond_family_params()[family_pair] (issue 11)
+    std::uint8_t family_pair = 0;  ///< its parameters: World::bond_family_params()[family_pair]
+    /// 1 while a bond that is not (or no longer) bonded still acts as an interface (a flat
+    /// joint whose elements are all unbonded: it carries compression and friction until its
+    /// surfaces separate); its law keeps stepping it, and it replaces the pair's contact.
+    std::uint8_t interface = 0;
     double tensile_strength = 0.0; ///< σ̄_c [Pa]
     double cohesion = 0.0;         ///< c̄ [Pa]
     double normal_force = 0.0;     ///< F̄_n, tension positive [N]
     Vec3 shear_force;              ///< F̄_s on j [N]
     double twist_moment = 0.0;     ///< M̄_t about n, on j [N m]
     Vec3 bend_moment;              ///< M̄_b on j [N m]
+};
+
+/// Whether the bond law still acts on this pair (intact, or an unbonded interface).
+inline bool bond_acts(const ParallelBond& b) { return b.state == BondState::intact || b.interface != 0; }
+
+/// What a law's install() knows of a new bond: the pair's geometry at installation and the
+/// key that seeds per-bond draws (same seed + pair = same draw, whatever the thread count).
+struct BondInstall {
+    Vec3 normal;            ///< n, unit, A -> B
+    double gap = 0.0;       ///< surface gap at installation [m] (< 0: overlap)
+    double radius_a = 0.0, radius_b = 0.0;  ///< R_A, R_B [m]
+    std::uint64_t key = 0;  ///< (i << 32) | j
+    double reach = 0.0;     ///< the largest surface gap bonds were installed across [m]
 };
 
 /// Bond cross-section; reciprocals are kept so the per-step kernel needs one division.
@@ -104,7 +121,7 @@ struct BondBreak {
 
 /// What one step of a law kernel produced for one bond.
 struct BondStepResult {
-    BondState failure = BondState::intact;  ///< != intact: the bond broke as a whole this step
+    BondState failure = BondState::intact;  ///< != intact: the bond stopped acting this step (released)
     Vec3 force_j;       ///< force on j [N] (zero once broken)
     Vec3 moment_j;      ///< moment on j about the contact point, lever arm excluded [N m]
     double stored = 0.0;    ///< elastic energy after the step (if tracked) [J]

@@ -1,88 +1,70 @@
 #pragma once
-// Flat joint (Potyondy 2012 semantics, 3D; models.md §3 "First implementation"). The interface
-// is the bond disc of radius R̄ = λ̄ min(R_A, R_B) (bond_law.hpp), split into N_r x N_α
-// annular-sector elements e: r in R̄ [i, i+1]/N_r, α in 2π [j, j+1]/N_α, measured in a frame
-// (t1, t2) of the contact plane that is installed once and then carried with the pair
-// (rotate_into_plane, like the stored shear force). Each element has area A_e, centroid x_e and
-// central second moments C_e (2x2 tensor in (t1, t2)), and its own state: bonded flag, centroid
-// opening δ_e [m] (tension +) and shear force F_s,e on B [N]. Per step, with the pair's
-// increments (pair_kinematics.hpp):
-//     δ_e  += dU_n + (dθ_b x x_e).n            F_s,e = rot(F_s,e) - k̄_s A_e (dU_s + dθ_t n x x_e)
-// Bonded element: F_n,e = k̄_n A_e δ_e (tension +), plus its own bending moment -k̄_n C_e θ_b and
-// twist moment -k̄_s (C_yy + C_zz) θ_t n from the joint's accumulated rotations θ_b, θ_t (the
-// linear stress field over the element; with every element bonded the joint has exactly the
-// parallel bond's k̄_n Ā, k̄_s Ā, k̄_n Ī, k̄_s J̄). Breaks in tension if σ_e = F_n,e/A_e >= σ̄_c,
-// else in shear if τ_e = |F_s,e|/A_e >= c̄ - min(σ_e, σ̄_c) tan φ̄.
-// Broken element: compression only, F_n,e = k̄_n A_e min(δ_e, 0) at its centroid, and Coulomb
-// friction |F_s,e| <= μ |F_n,e| (μ = FlatJointParams::residual_friction); slip energy is counted.
-// So a partly broken joint still resists rotation through its compressed elements.
-// Resultant on B about the contact point: F = Σ (F_s,e - F_n,e n), M = Σ x_e x f_e + own moments.
-// The bond record holds that resultant (normal_force = -F.n, etc.).
-// Cracks: one BreakEvent per element break (element index, centroid position); when the last
-// element breaks the whole joint is released (its remaining compression energy goes to
-// bond_break) and the pair continues as a plain linear contact.
-// Simplifications (stated): element stresses are centroid averages (no β̄, no bending stress
-// within an element, so a 1x1 joint cannot break in pure bending); a broken element acts at its
-// centroid only (no partly open elements, no own moment); no residual cohesion (fj_cohres), no
-// gapped/slit elements; a fully broken joint hands over to the linear contact (PFC keeps the
-// joint as a frictional interface of elements).
-// Contact: by default (BondParams::replaces_contact) an intact joint REPLACES the pair's linear
-// contact (PFC's flatjoint is the pair's whole contact model): its elements alone carry
-// compression; replaces_contact = false keeps the contact in parallel. Installed at zero force.
-// Time step: the undamaged disc (= parallel bond).
+// Flat joint (Potyondy 2012, "A flat-jointed bonded-particle material for hard rock"; PFC's
+// flatjoint, 3D; docs/bond_laws.md "Flat joint"). The interface is the bond disc of radius
+// R̄ = λ̄ min(R_A, R_B) split into N_r x N_α annular-sector elements (flat_joint_geometry.hpp),
+// in a frame (t1, t2) installed once and carried with the pair (rotate_into_plane).
+//
+// Kinematics, per step, with the pair's increments (pair_kinematics.hpp): each element keeps
+// its centroid opening δ_e [m] (tension +) and shear force F_s,e on B [N]; the joint keeps its
+// accumulated bending rotation θ_b and twist θ_t [rad]:
+//     δ_e += dU_n + (dθ_b x x_e).n        F_s,e = rot(F_s,e) - k̄_s A_e (dU_s + dθ_t n x x_e)
+// so the gap over the interface is linear, g(x) = g_0 + δ_e + w.(x - x_e), w = n x θ_b.
+//
+// Bonded element (linear, tension and compression): F_n,e = k̄_n A_e δ_e (tension +), its own
+// bending moment n x (k̄_n C_e w) and twist moment -k̄_s (C_yy + C_zz) θ_t n (the linear stress
+// field over it; with every element bonded the joint is exactly the parallel bond's disc). It
+// breaks in tension if σ_e = F_n,e/A_e >= σ̄_c, else in shear if
+//     τ_e = |F_s,e|/A_e >= c̄ - min(σ_e, σ̄_c) tan φ̄      (σ tension +, so compression adds).
+// Unbonded element (broken, or of a slit or gapped joint): normal stress k̄_n min(g(x), 0)
+// integrated over the element's compressed part (exact radially, Gauss in angle), so a partly
+// open element carries its share and a closed one its full bending stiffness; shear Coulomb,
+// |F_s,e| <= μ |F_n,e| (μ = FlatJointParams::residual_friction), slip energy counted.
+// Resultant on B about the contact point: F = Σ (F_s,e - F_n,e n), M = Σ (x_e x F_s,e + n x P_e)
+// with P_e the first moment of the element's normal stresses (+ the twist of bonded elements).
+// The bond record holds that resultant (normal_force = -F.n, ...).
+//
+// Joint types (Potyondy 2012 §2; PFC fj_mtype), drawn per joint with the strength seed:
+// bonded (φ_B: every element bonded, g_0 = 0), gapped (φ_G: unbonded, initial gap
+// g_0 = gap_ratio R̄) and slit (the rest: unbonded, g_0 = 0).
+// A joint with no bonded element stays an interface (BondState none for slit and gapped joints,
+// broken_* once its last element broke; ParallelBond::interface = 1) until its surfaces have
+// separated: every element open AND the pair's surface gap beyond the installation reach
+// (BondInstall::reach, the gap up to which bonds were installed). Then it is released and the
+// pair continues as a plain linear contact (as PFC gives new contacts the linear model).
+// Cracks: one BreakEvent per element break (element index, centroid position).
+// Installation across a gap g > 0 (FlatJointParams::stiffness_over_gap): k̄_n and k̄_s scale by
+// (R_A + R_B)/(R_A + R_B + g), a cement bridge as long as the centre distance; the reference
+// state is the installed one (zero force, δ_e = 0).
+// Simplified (stated): element strengths use the element's mean stresses (no β̄, so a 1x1
+// joint cannot break in pure bending); an unbonded element's shear acts at its centroid and
+// has no twist moment of its own; no residual cohesion (fj_cohres); the time step uses the
+// undamaged touching disc (an upper bound on the stiffness).
+// Contact: by default (BondParams::replaces_contact) an acting joint REPLACES the pair's linear
+// contact (PFC's flatjoint is the pair's whole contact model).
 #include <cmath>
 #include <span>
 #include <vector>
 
+#include "core/flat_joint_geometry.hpp"
 #include "core/parallel_bond_law.hpp"
+#include "core/random.hpp"
 
 namespace gradem {
 
-/// Geometry of one element of a unit-radius joint (scale: A R̄², x R̄, C R̄⁴).
-struct FlatElementGeometry {
-    double area = 0;               ///< A_e
-    double y = 0, z = 0;           ///< centroid in (t1, t2)
-    double cyy = 0, czz = 0, cyz = 0;  ///< central ∫(y-y_e)² dA, ∫(z-z_e)² dA, ∫(y-y_e)(z-z_e) dA
-};
+/// Microstructural type of a joint (PFC fj_mtype order).
+enum class FlatJointType : std::uint8_t { bonded = 0, gapped = 1, slit = 2 };
 
-/// The N_r x N_α elements of a unit disc, element index = i_r N_α + i_α.
-inline std::vector<FlatElementGeometry> flat_joint_elements(std::int32_t nr, std::int32_t na) {
-    std::vector<FlatElementGeometry> out;
-    const double da = 2.0 * kPi / na;
-    for (std::int32_t ir = 0; ir < nr; ++ir) {
-        const double r0 = static_cast<double>(ir) / nr, r1 = static_cast<double>(ir + 1) / nr;
-        for (std::int32_t ia = 0; ia < na; ++ia) {
-            const double a0 = ia * da, a1 = (ia + 1) * da;
-            FlatElementGeometry g;
-            g.area = 0.5 * (r1 * r1 - r0 * r0) * da;
-            const double m1 = (r1 * r1 * r1 - r0 * r0 * r0) / 3.0;
-            const double q = (r1 * r1 * r1 * r1 - r0 * r0 * r0 * r0) / 4.0;
-            const double sy = m1 * (std::sin(a1) - std::sin(a0));
-            const double sz = m1 * (std::cos(a0) - std::cos(a1));
-            const double s2 = (std::sin(2 * a1) - std::sin(2 * a0)) / 4.0;
-            const double syy = q * (0.5 * da + s2), szz = q * (0.5 * da - s2);
-            const double syz = q * 0.5 * (std::sin(a1) * std::sin(a1) - std::sin(a0) * std::sin(a0));
-            g.y = sy / g.area;
-            g.z = sz / g.area;
-            g.cyy = syy - g.area * g.y * g.y;
-            g.czz = szz - g.area * g.z * g.z;
-            g.cyz = syz - g.area * g.y * g.z;
-            out.push_back(g);
-        }
-    }
-    return out;
-}
-
-/// The installed in-plane axis t1 for normal n: n x (the axis of n's smallest component).
-inline Vec3 flat_joint_initial_axis(const Vec3& n) {
-    const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
-    const Vec3 e = (ax <= ay && ax <= az) ? Vec3{1, 0, 0} : (ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
-    const Vec3 t = cross(n, e);
-    return (1.0 / norm(t)) * t;
-}
-
-/// Side-state layout: t1 (3), θ_b (3), θ_t (1), then per element: bonded, δ_e, F_s,e (3).
-inline constexpr std::size_t kFlatJointHeader = 7, kFlatElementSize = 5;
+/// Side-state layout: a header, then kFlatElementSize doubles per element (bonded, δ_e, F_s,e).
+namespace flat_side {
+inline constexpr std::size_t axis = 0;             ///< t1 (3)
+inline constexpr std::size_t bend = 3;             ///< θ_b (3) [rad]
+inline constexpr std::size_t twist = 6;            ///< θ_t [rad]
+inline constexpr std::size_t type = 7;             ///< FlatJointType as a double
+inline constexpr std::size_t initial_gap = 8;      ///< g_0 [m]
+inline constexpr std::size_t stiffness_scale = 9;  ///< (R_A+R_B)/(R_A+R_B+g) or 1 [-]
+inline constexpr std::size_t release_gap = 10;     ///< surface gap beyond which a separated joint is released [m]
+}  // namespace flat_side
+inline constexpr std::size_t kFlatJointHeader = 11, kFlatElementSize = 5;
 
 struct FlatElementState {
     bool bonded = true;
@@ -95,6 +77,99 @@ inline FlatElementState flat_joint_element(std::span<const double> s, std::size_
     return {p[0] != 0.0, p[1], {p[2], p[3], p[4]}};
 }
 inline Vec3 flat_joint_axis(std::span<const double> s) { return {s[0], s[1], s[2]}; }
+inline FlatJointType flat_joint_type(std::span<const double> s) {
+    return static_cast<FlatJointType>(static_cast<int>(s[flat_side::type]));
+}
+
+/// The installed in-plane axis t1 for normal n: n x (the axis of n's smallest component).
+inline Vec3 flat_joint_initial_axis(const Vec3& n) {
+    const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+    const Vec3 e = (ax <= ay && ax <= az) ? Vec3{1, 0, 0} : (ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
+    const Vec3 t = cross(n, e);
+    return (1.0 / norm(t)) * t;
+}
+
+/// The type of the joint of pair `key` (uniform draw against φ_B, φ_B + φ_G).
+inline FlatJointType draw_flat_joint_type(const FlatJointParams& f, std::uint64_t seed, std::uint64_t key) {
+    if (f.bonded_fraction >= 1.0) return FlatJointType::bonded;
+    const double u = hashed_uniform(seed ^ 0x2545f4914f6cdd1dull, key, 0);
+    if (u < f.bonded_fraction) return FlatJointType::bonded;
+    if (u < f.bonded_fraction + f.gapped_fraction) return FlatJointType::gapped;
+    return FlatJointType::slit;
+}
+
+namespace flat_detail {
+
+/// The joint's frame and rotations after this step's increments.
+struct JointFrame {
+    Vec3 t1, t2;
+    double wy = 0, wz = 0;  ///< w = n x θ_b in (t1, t2) [rad]
+    double twist = 0;       ///< θ_t [rad]
+};
+
+inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
+    using namespace flat_side;
+    JointFrame f;
+    Vec3 t1 = rotate_into_plane({side[axis], side[axis + 1], side[axis + 2]}, kin);
+    f.t1 = (1.0 / norm(t1)) * t1;
+    f.t2 = cross(kin.normal, f.t1);
+    const Vec3 bend_total = rotate_into_plane({side[bend], side[bend + 1], side[bend + 2]}, kin) + kin.bend_angle;
+    f.twist = side[twist] + kin.twist_angle;
+    side[axis] = f.t1.x, side[axis + 1] = f.t1.y, side[axis + 2] = f.t1.z;
+    side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
+    side[twist] = f.twist;
+    // θ_b = a t1 + b t2  ->  w = n x θ_b = a t2 - b t1.
+    const double a = dot(bend_total, f.t1), b = dot(bend_total, f.t2);
+    f.wy = -b;
+    f.wz = a;
+    return f;
+}
+
+/// The normal part of one element: F_n (tension +) [N], the moment of its normal stresses
+/// about the contact point on B [N m], their strain energy [J], and whether it is open over
+/// its whole extent.
+struct NormalLoad {
+    double fn = 0;
+    Vec3 moment;
+    double energy = 0;
+    bool open = false;
+};
+
+/// Linear stress field over the whole element (bonded, or unbonded and closed everywhere):
+/// F_n = k̄_n A g_e, P = k̄_n (A g_e x_e + C w), U = ½ k̄_n (A g_e² + wᵀ C w).
+inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& f, const Vec3& n, double kn,
+                                double R, double gap) {
+    const double R2 = R * R, R4 = R2 * R2, area = R2 * g.area;
+    const double cwy = g.cyy * f.wy + g.cyz * f.wz, cwz = g.cyz * f.wy + g.czz * f.wz;  // C w (unit disc)
+    NormalLoad out;
+    out.fn = kn * area * gap;
+    const Vec3 x = (R * g.y) * f.t1 + (R * g.z) * f.t2;
+    const Vec3 p = out.fn * x + (kn * R4) * (cwy * f.t1 + cwz * f.t2);
+    out.moment = cross(n, p);
+    out.energy = 0.5 * (kn * area * gap * gap + kn * R4 * (f.wy * cwy + f.wz * cwz));
+    return out;
+}
+
+/// Unbonded element at centroid gap g_e = g_0 + δ_e: no tension, compressed part integrated.
+inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, const Vec3& n, double kn,
+                                  double R, double gap) {
+    const double spread = R * std::hypot(f.wy, f.wz) * g.reach;  // max |g(x) - g_e| over the element
+    if (gap + spread <= 0.0) return linear_normal(g, f, n, kn, R, gap);
+    NormalLoad out;
+    if (gap - spread >= 0.0) {
+        out.open = true;
+        return out;
+    }
+    const double gamma = gap - R * (f.wy * g.y + f.wz * g.z);  // g at the disc centre
+    const CompressedPart c = compressed_part(g, gamma, R * f.wy, R * f.wz);
+    const double R2 = R * R;
+    out.fn = kn * R2 * c.force;
+    out.moment = cross(n, (kn * R2 * R) * (c.py * f.t1 + c.pz * f.t2));
+    out.energy = 0.5 * kn * R2 * c.energy;
+    return out;
+}
+
+}  // namespace flat_detail
 
 struct FlatJointLaw {
     static constexpr BondModel kModel = BondModel::flat_joint;
@@ -112,101 +187,96 @@ struct FlatJointLaw {
         return kFlatJointHeader + kFlatElementSize * static_cast<std::size_t>(p.flat.radial_elements) *
                                       static_cast<std::size_t>(p.flat.angular_elements);
     }
-    static void install(const BondParams& p, const Vec3& normal, double* side) {
-        const Vec3 t = flat_joint_initial_axis(normal);
-        side[0] = t.x, side[1] = t.y, side[2] = t.z;
+    static void install(const BondParams& p, const BondInstall& in, ParallelBond& b, double* side) {
+        using namespace flat_side;
+        const Vec3 t = flat_joint_initial_axis(in.normal);
+        side[axis] = t.x, side[axis + 1] = t.y, side[axis + 2] = t.z;
+        const FlatJointType type_drawn = draw_flat_joint_type(p.flat, p.seed, in.key);
+        const double joint_radius = p.radius_multiplier * std::min(in.radius_a, in.radius_b);
+        side[type] = static_cast<double>(static_cast<int>(type_drawn));
+        side[initial_gap] = type_drawn == FlatJointType::gapped ? p.flat.gap_ratio * joint_radius : 0.0;
+        const double length = in.radius_a + in.radius_b;
+        side[stiffness_scale] = p.flat.stiffness_over_gap && in.gap > 0.0 ? length / (length + in.gap) : 1.0;
+        side[release_gap] = std::max(in.reach, in.gap);
         const std::size_t n = (side_size(p) - kFlatJointHeader) / kFlatElementSize;
-        for (std::size_t e = 0; e < n; ++e) side[kFlatJointHeader + e * kFlatElementSize] = 1.0;
+        const double bonded = type_drawn == FlatJointType::bonded ? 1.0 : 0.0;
+        for (std::size_t e = 0; e < n; ++e) side[kFlatJointHeader + e * kFlatElementSize] = bonded;
+        if (type_drawn != FlatJointType::bonded) {
+            b.state = BondState::none;
+            b.interface = 1;
+        }
     }
 
     static BondStepResult step(const Context& c, ParallelBond& b, double* side,
-                               const BondSection& sec, const BondStiffness& k,
+                               const BondSection& sec, const BondStiffness& k_touching,
                                const PairKinematics& kin, std::vector<BondBreak>& breaks) {
+        using namespace flat_detail;
         BondStepResult r;
         const Vec3& n = kin.normal;
-        // Frame and accumulated rotations, carried into the current plane.
-        Vec3 t1 = rotate_into_plane({side[0], side[1], side[2]}, kin);
-        t1 = (1.0 / norm(t1)) * t1;
-        const Vec3 t2 = cross(n, t1);
-        const Vec3 bend = rotate_into_plane({side[3], side[4], side[5]}, kin) + kin.bend_angle;
-        const double twist = side[6] + kin.twist_angle;
-        side[0] = t1.x, side[1] = t1.y, side[2] = t1.z;
-        side[3] = bend.x, side[4] = bend.y, side[5] = bend.z;
-        side[6] = twist;
-        const double a = dot(bend, t1), bb = dot(bend, t2);  // θ_b in (t1, t2) [rad]
+        const JointFrame f = carry_frame(side, kin);
+        const double scale = side[flat_side::stiffness_scale];
+        const BondStiffness k{k_touching.normal * scale, k_touching.shear * scale};
+        const double g0 = side[flat_side::initial_gap];
         const double R = sec.radius, R2 = R * R, R4 = R2 * R2;
 
         Vec3 force, moment;
         double stored = 0.0;
-        bool any_bonded = false;
+        bool any_bonded = false, all_open = true;
         BondState last_mode = BondState::intact;
         for (std::size_t e = 0; e < c.elements.size(); ++e) {
             const FlatElementGeometry& g = c.elements[e];
             double* p = side + kFlatJointHeader + e * kFlatElementSize;
-            const Vec3 x = (R * g.y) * t1 + (R * g.z) * t2;  // centroid from the contact point
+            const Vec3 x = (R * g.y) * f.t1 + (R * g.z) * f.t2;  // centroid from the contact point
             const double area = R2 * g.area;
-            const double kna = k.normal * area, ksa = k.shear * area;
+            const double ksa = k.shear * area;
             const double opening = p[1] + kin.du_normal + dot(cross(kin.bend_angle, x), n);
             const Vec3 du = kin.du_shear + kin.twist_angle * cross(n, x);
             const Vec3 rotated = rotate_into_plane({p[2], p[3], p[4]}, kin);
             Vec3 shear = rotated - ksa * du;
-            bool bonded = p[0] != 0.0;
-            // Own bending/twist energy of a bonded element (linear field over it) [J].
-            const double own_energy = 0.5 * k.normal * R4 * (g.czz * a * a - 2.0 * g.cyz * a * bb + g.cyy * bb * bb) +
-                                      0.5 * k.shear * R4 * (g.cyy + g.czz) * twist * twist;
-            bool broke_now = false;
+            const double twist_energy = 0.5 * k.shear * R4 * (g.cyy + g.czz) * f.twist * f.twist;
+            bool bonded = p[0] != 0.0, broke_now = false;
             double energy_before = 0.0;
+            NormalLoad load;
             if (bonded) {
-                const double sigma = k.normal * opening;           // σ_e [Pa]
-                const double tau = norm(shear) / area;              // τ_e [Pa]
-                const double capped = sigma < b.tensile_strength ? sigma : b.tensile_strength;
-                BondState mode = BondState::intact;
-                if (sigma >= b.tensile_strength) mode = BondState::broken_tension;
-                else if (tau >= b.cohesion - capped * c.tan_phi) mode = BondState::broken_shear;
+                load = linear_normal(g, f, n, k.normal, R, opening);
+                const BondState mode = element_failure(c, b, load.fn / area, norm(shear) / area);
                 if (mode != BondState::intact) {
-                    energy_before = 0.5 * (kna * opening * opening + norm2(shear) / ksa) + own_energy;
-                    breaks.push_back({mode, static_cast<std::int32_t>(e), x, sigma, tau});
+                    energy_before = load.energy + 0.5 * norm2(shear) / ksa + twist_energy;
+                    breaks.push_back({mode, static_cast<std::int32_t>(e), x, load.fn / area, norm(shear) / area});
                     bonded = false;
                     broke_now = true;
                     last_mode = mode;
                 }
             }
-            double fn;  // F_n,e, tension + [N]
-            if (bonded) {
-                fn = kna * opening;
-            } else {
-                fn = opening < 0.0 ? kna * opening : 0.0;
-                const double limit = -c.friction * fn;
-                const double s2 = norm2(shear);
-                if (s2 > limit * limit) {
-                    const Vec3 capped = (s2 > 0.0 ? limit / std::sqrt(s2) : 0.0) * shear;
-                    if (!broke_now && c.track)
-                        r.slip += -0.5 * dot(rotated + capped, du) -
-                                  0.5 * (norm2(capped) - norm2(rotated)) / ksa;
-                    shear = capped;
-                }
+            if (!bonded) {
+                load = unbonded_normal(g, f, n, k.normal, R, g0 + opening);
+                shear = frictional_cap(c, shear, rotated, du, load.fn, ksa, broke_now, r.slip);
             }
-            const double energy = 0.5 * (fn * fn / kna + norm2(shear) / ksa) + (bonded ? own_energy : 0.0);
+            const double energy = load.energy + 0.5 * norm2(shear) / ksa + (bonded ? twist_energy : 0.0);
             if (broke_now) r.released += energy_before - energy;
             stored += energy;
             p[0] = bonded ? 1.0 : 0.0;
             p[1] = opening;
             p[2] = shear.x, p[3] = shear.y, p[4] = shear.z;
 
-            const Vec3 f = shear - fn * n;
-            force += f;
-            moment += cross(x, f);
-            if (bonded) {
-                any_bonded = true;
-                moment -= (k.normal * R4) * ((a * g.czz - bb * g.cyz) * t1 + (bb * g.cyy - a * g.cyz) * t2);
-                moment -= (k.shear * R4 * (g.cyy + g.czz) * twist) * n;
-            }
+            force += shear - load.fn * n;
+            moment += cross(x, shear) + load.moment;
+            if (bonded) moment -= (k.shear * R4 * (g.cyy + g.czz) * f.twist) * n;
+            any_bonded = any_bonded || bonded;
+            all_open = all_open && load.open;
         }
-        if (!any_bonded) {  // the last element broke: the joint is released as a whole
-            if (c.track) r.released += stored;
-            release_bond(b, last_mode == BondState::intact ? BondState::broken_tension : last_mode);
-            r.failure = b.state;
-            return r;
+        if (!any_bonded) {
+            if (b.state == BondState::intact) {  // the last element broke: an unbonded interface now
+                b.state = last_mode == BondState::intact ? BondState::broken_tension : last_mode;
+                b.interface = 1;
+            }
+            if (all_open && kin.gap > side[flat_side::release_gap]) {  // separated: released
+                if (c.track) r.released += stored;
+                release_bond(b, b.state);
+                b.interface = 0;
+                r.failure = b.state;  // broken_* or none: no longer acting
+                return r;
+            }
         }
         if (!c.track) r.released = 0.0;
         if (c.track) r.stored = stored;
@@ -222,6 +292,28 @@ struct FlatJointLaw {
     static TimeStepStiffness time_step_stiffness(const BondSection& s, const BondStiffness& k,
                                                  double r) {
         return disc_time_step_stiffness(s, k, r);
+    }
+
+private:
+    /// Which way a bonded element fails at mean stresses σ (tension +) and τ [Pa], if it does.
+    static BondState element_failure(const Context& c, const ParallelBond& b, double sigma, double tau) {
+        if (sigma >= b.tensile_strength) return BondState::broken_tension;
+        const double capped = sigma < b.tensile_strength ? sigma : b.tensile_strength;
+        if (tau >= b.cohesion - capped * c.tan_phi) return BondState::broken_shear;
+        return BondState::intact;
+    }
+
+    /// Coulomb cap |F_s| <= μ max(-F_n, 0) of an unbonded element; adds the slip energy of the
+    /// step (trapezoidal work of the capped force on the slip increment) unless it broke now.
+    static Vec3 frictional_cap(const Context& c, const Vec3& shear, const Vec3& rotated, const Vec3& du,
+                               double fn, double ksa, bool broke_now, double& slip) {
+        const double limit = fn < 0.0 ? -c.friction * fn : 0.0;
+        const double s2 = norm2(shear);
+        if (!(s2 > limit * limit)) return shear;
+        const Vec3 capped = (s2 > 0.0 ? limit / std::sqrt(s2) : 0.0) * shear;
+        if (!broke_now && c.track)
+            slip += -0.5 * dot(rotated + capped, du) - 0.5 * (norm2(capped) - norm2(rotated)) / ksa;
+        return capped;
     }
 };
 

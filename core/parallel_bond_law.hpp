@@ -35,7 +35,7 @@ struct ParallelBondLaw {
         return {std::tan(p.friction_angle_deg * kPi / 180.0), p.moment_factor, track};
     }
     static std::size_t side_size(const BondParams&) { return 0; }
-    static void install(const BondParams&, const Vec3&, double*) {}
+    static void install(const BondParams&, const BondInstall&, ParallelBond&, double*) {}
 
     /// The arithmetic of one step: advances b's forces and moments, and returns the failure
     /// mode, the peak stresses, the strain energy of the advanced state (0 if not tracked) and

@@ -72,6 +72,15 @@ std::optional<std::string> BondParams::invalid_reason() const {
         return violation("FlatJointParams::angular_elements", flat.angular_elements, ">= 1");
     if (!non_negative(flat.residual_friction))
         return violation("FlatJointParams::residual_friction", flat.residual_friction, ">= 0");
+    if (!(flat.bonded_fraction >= 0.0 && flat.bonded_fraction <= 1.0))
+        return violation("FlatJointParams::bonded_fraction", flat.bonded_fraction, "in [0, 1]");
+    if (!(flat.gapped_fraction >= 0.0 && flat.gapped_fraction <= 1.0))
+        return violation("FlatJointParams::gapped_fraction", flat.gapped_fraction, "in [0, 1]");
+    if (!(flat.bonded_fraction + flat.gapped_fraction <= 1.0 + 1e-12))
+        return violation("FlatJointParams::gapped_fraction", flat.gapped_fraction,
+                         "<= 1 - FlatJointParams::bonded_fraction (the fractions sum to at most 1)");
+    if (!non_negative(flat.gap_ratio))
+        return violation("FlatJointParams::gap_ratio", flat.gap_ratio, ">= 0");
     return std::nullopt;
 }
 

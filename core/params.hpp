@@ -35,11 +35,20 @@ struct SoftBondParams {
     double cut_fraction = 0.2;      ///< γ: breaks once the softened stress is <= γ σ̄_c, in [0, 1) [-]
 };
 
-/// Flat joint shape parameters (models.md §3): the interface disc split into elements.
+/// Flat joint shape parameters (core/flat_joint_law.hpp): the interface disc split into
+/// elements, and the joint's microstructural types (Potyondy 2012): each joint is drawn bonded,
+/// gapped or slit with these fractions (slit = 1 - bonded - gapped).
 struct FlatJointParams {
     std::int32_t radial_elements = 1;   ///< N_r, >= 1
     std::int32_t angular_elements = 4;  ///< N_α, >= 1
-    double residual_friction = 0.5;     ///< μ of a broken element, >= 0 [-]
+    double residual_friction = 0.5;     ///< μ of an unbonded element, >= 0 [-]
+    double bonded_fraction = 1.0;       ///< φ_B, joints installed bonded, in [0, 1] [-]
+    double gapped_fraction = 0.0;       ///< φ_G, joints installed unbonded with gap g_0, in [0, 1] [-]
+    double gap_ratio = 0.0;             ///< g_0 / R̄ of a gapped joint, >= 0 [-]
+    /// true: a joint installed across a surface gap g > 0 has k̄_n = Ē*/(R_A + R_B + g), the
+    /// stiffness of a cement bridge as long as the centre distance; false: Ē*/(R_A + R_B), the
+    /// touching pair's, whatever the gap.
+    bool stiffness_over_gap = false;
 };
 
 /// Bond parameters (Potyondy & Cundall 2004; PFC linearpbond) shared by every bond model. Bond stiffness per unit area

@@ -110,7 +110,7 @@ struct SoftBondLaw {
                 p.soft.softening_factor, p.soft.cut_fraction, track};
     }
     static std::size_t side_size(const BondParams&) { return kSoftBondSideSize; }
-    static void install(const BondParams&, const Vec3&, double* side) {
+    static void install(const BondParams&, const BondInstall&, ParallelBond&, double* side) {
         store_soft_bond_state({}, side);
     }
 

@@ -139,7 +139,7 @@ double World::critical_time_step() {
                 const double ks = kn / contact_.stiffness_ratio;
                 k_tran += std::max(kn, ks);
                 k_rot += ks * ri * ri;
-                if (pr.bond >= 0 && bonds_[static_cast<std::size_t>(pr.bond)].state == BondState::intact) {
+                if (pr.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(pr.bond)])) {
                     const ParallelBond& bond = bonds_[static_cast<std::size_t>(pr.bond)];
                     const BondParams& bp = bond_family_params_[bond.family_pair];
                     const BondSection s = bond_section(bp.radius_multiplier, ra, rb);
@@ -192,7 +192,7 @@ std::vector<std::int32_t> World::contact_counts() const {
     std::vector<std::int32_t> count(particles_.size(), 0);
     for (const Pair& p : pairs_) {
         const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
-        const bool bonded = p.bond >= 0 && bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
+        const bool bonded = p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)]);
         const double reach = particles_.radius[i] + particles_.radius[j];
         if (bonded || norm2(particles_.position[j] - particles_.position[i]) < reach * reach) {
             ++count[i];

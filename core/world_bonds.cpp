@@ -51,7 +51,7 @@ std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
     std::vector<ParticlePair> found;
     search_->find_pairs(particles_.position, particles_.radius, std::max(max_gap, 0.0), found);
     bonds_.clear();
-    std::vector<Vec3> normals;
+    std::vector<BondInstall> installs;
     for (const ParticlePair& p : found) {
         const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
         const int fa = nf == 1 ? 0 : particles_.family[i], fb = nf == 1 ? 0 : particles_.family[j];
@@ -73,17 +73,17 @@ std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
         b.cohesion = truncated_normal_positive(params.cohesion_mean, params.cohesion_std,
                                                params.seed ^ 0x5bd1e995ull, key);
         bonds_.push_back(b);
-        normals.push_back(dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0});
+        installs.push_back({dist > 0.0 ? (1.0 / dist) * d : Vec3{1.0, 0.0, 0.0}, gap, particles_.radius[i],
+                            particles_.radius[j], key, std::max(max_gap, 0.0)});
     }
     bond_side_stride_ = stride;
     bond_side_.assign(bonds_.size() * stride, 0.0);
     bond_side_.shrink_to_fit();
-    if (stride > 0)
-        visit_bond_law(first->model, [&](auto law) {
-            for (std::size_t k = 0; k < bonds_.size(); ++k)
-                decltype(law)::install(bond_family_params_[bonds_[k].family_pair], normals[k],
-                                       bond_side_.data() + k * stride);
-        });
+    visit_bond_law(first->model, [&](auto law) {
+        for (std::size_t k = 0; k < bonds_.size(); ++k)
+            decltype(law)::install(bond_family_params_[bonds_[k].family_pair], installs[k], bonds_[k],
+                                   bond_side_.data() + k * stride);
+    });
     bond_stored_.assign(bonds_.size(), 0.0);
     bond_const_stale_ = true;
     rebuild_needed_ = true;
@@ -111,7 +111,7 @@ World::BondEnergy World::compute_bonds(double dt) {
                           [&](auto law) { return compute_bonds_with<decltype(law)>(dt); });
 }
 
-// Phase 3: every intact bond through the law's kernel, added into its pair's slot.
+// Phase 3: every acting bond (bond_acts) through the law's kernel, added into its pair's slot.
 template <class Law>
 World::BondEnergy World::compute_bonds_with(double dt) {
     const auto nb = static_cast<std::int64_t>(bonds_.size());
@@ -125,7 +125,7 @@ World::BondEnergy World::compute_bonds_with(double dt) {
         std::vector<BondBreak> breaks;
         for (std::int64_t k = begin; k < end; ++k) {
             ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
-            if (b.state != BondState::intact) continue;
+            if (!bond_acts(b)) continue;
             const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
             const PairState s{particles_.position[i], particles_.position[j],
                               particles_.velocity[i], particles_.velocity[j], particles_.spin[i],

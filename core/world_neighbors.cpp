@@ -1,6 +1,6 @@
 // Verlet pair list with skin: rebuilt when any particle has moved more than half the skin
 // since the last build (or a wall has moved enough to matter), so no pair can come into
-// contact unseen between rebuilds. Intact bonded pairs are always kept, however far apart.
+// contact unseen between rebuilds. Pairs of acting bonds (bond_acts) are always kept, however far apart.
 // Shear-force histories are carried over by merging the old and new sorted lists.
 #include <algorithm>
 #include <cmath>
@@ -34,14 +34,14 @@ void World::rebuild_neighbors() {
     if (sim_.time_step == 0.0) dt_ = sim_.time_step_safety * critical_time_step();
 }
 
-// New pair list = (found pairs) ∪ (intact bonded pairs), sorted; shear history and bond links
+// New pair list = (found pairs) ∪ (pairs of acting bonds: bond_acts), sorted; shear history and bond links
 // carried over from the old list by a three-way merge on (i, j).
 void World::merge_pairs(const std::vector<ParticlePair>& found) {
     std::vector<Pair> merged;
     merged.reserve(found.size() + bonds_.size() / 8);
     std::size_t f = 0, b = 0, o = 0;
     auto next_bond = [&]() {
-        while (b < bonds_.size() && bonds_[b].state != BondState::intact) {
+        while (b < bonds_.size() && !bond_acts(bonds_[b])) {
             bonds_[b].slot = -1;
             ++b;
         }

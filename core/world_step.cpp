@@ -110,9 +110,9 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
     last_eval_ = e;
 }
 
-// Phase 2: linear contact law for every Verlet pair, one output slot each. A pair whose intact
+// Phase 2: linear contact law for every Verlet pair, one output slot each. A pair whose acting
 // bond replaces the contact (BondParams::replaces_contact; soft bond and flat joint) carries
-// nothing here: its bond is its only spring until it breaks (the bond phase runs after this one,
+// nothing here: its bond is its only spring until it is released (the bond phase runs after this one,
 // so a bond broken this step lets the contact act from the next step on).
 void World::compute_contacts(double dt, double& strain, double& slip) {
     const auto m = static_cast<std::int64_t>(pairs_.size());
@@ -128,8 +128,7 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
             const Vec3 d = s.xb - s.xa;
-            const bool replaced = bond_replaces && p.bond >= 0 &&
-                                  bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
+            const bool replaced = bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)]);
             if (replaced || norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb)) {  // replaced or open: nothing
                 p.shear_force = {};
                 out = {};

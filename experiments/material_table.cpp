@@ -47,6 +47,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr Range positive{0.0, kInf, true, false};       // > 0
 constexpr Range non_negative{0.0, kInf, false, false};  // >= 0
 constexpr Range unit_open_right{0.0, 1.0, false, true}; // in [0, 1)
+constexpr Range unit_closed{0.0, 1.0, false, false};    // in [0, 1]
 
 constexpr ModelSet kSoftBond = model_bit(BondModel::soft_bond);
 constexpr ModelSet kFlatJoint = model_bit(BondModel::flat_joint);
@@ -234,6 +235,37 @@ const std::array kTable = {
         .si_group = "flat_joint", .si_name = "residual_friction", .core_field = "FlatJointParams::residual_friction",
         .range = non_negative,
         .calibration = Calibration::free, .lower = 0.2, .upper = 1.0},
+    MaterialParameter{.key = "bonded_fraction", .unit = "-",
+        .description = "phi_B, fraction of joints installed bonded (flat_joint; the rest gapped or slit)",
+        .models = kFlatJoint,
+        .get = si_get<&M::bond, &B::flat, &FlatJointParams::bonded_fraction>,
+        .set = si_set<&M::bond, &B::flat, &FlatJointParams::bonded_fraction>,
+        .si_group = "flat_joint", .si_name = "bonded_fraction", .core_field = "FlatJointParams::bonded_fraction",
+        .range = unit_closed, .calibration = Calibration::free, .lower = 0.3, .upper = 1.0},
+    MaterialParameter{.key = "gapped_fraction", .unit = "-",
+        .description = "phi_G, fraction of joints installed unbonded with an initial gap (flat_joint; slit = 1 - phi_B - phi_G)",
+        .models = kFlatJoint,
+        .get = si_get<&M::bond, &B::flat, &FlatJointParams::gapped_fraction>,
+        .set = si_set<&M::bond, &B::flat, &FlatJointParams::gapped_fraction>,
+        .si_group = "flat_joint", .si_name = "gapped_fraction", .core_field = "FlatJointParams::gapped_fraction",
+        .range = unit_closed, .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
+    MaterialParameter{.key = "gap_ratio", .unit = "-",
+        .description = "g_0 / joint radius, the initial gap of a gapped joint (flat_joint)",
+        .models = kFlatJoint,
+        .get = si_get<&M::bond, &B::flat, &FlatJointParams::gap_ratio>,
+        .set = si_set<&M::bond, &B::flat, &FlatJointParams::gap_ratio>,
+        .si_group = "flat_joint", .si_name = "gap_ratio", .core_field = "FlatJointParams::gap_ratio",
+        .range = non_negative, .calibration = Calibration::free, .lower = 0.0, .upper = 0.05},
+    MaterialParameter{.key = "stiffness_over_gap", .unit = "-",
+        .description = "true: a joint installed across a gap g has k_n = E*/(R_A + R_B + g) (a bridge as long as the "
+                       "centre distance); false: E*/(R_A + R_B) (flat_joint)",
+        .models = kFlatJoint, .integer = true, .flag = true,
+        .get = si_get<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
+        .set = si_set<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
+        .get_int = int_get<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
+        .set_int = int_set<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
+        .si_group = "flat_joint", .si_name = "stiffness_over_gap", .core_field = "FlatJointParams::stiffness_over_gap",
+        .range = {0.0, 1.0, false, false}, .calibration = Calibration::fixed_only, .lower = 0.0, .upper = 1.0},
 };
 // clang-format on
 #pragma GCC diagnostic pop

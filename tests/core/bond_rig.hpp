@@ -29,7 +29,8 @@ struct BondRig {
     double dt = 1.0e-7;
     double rest_distance;
 
-    explicit BondRig(const BondParams& bp, double gap = kRigGap)
+    /// `reach`: the largest gap bonds are installed across (default 2 gap + 1e-12 m).
+    explicit BondRig(const BondParams& bp, double gap = kRigGap, double reach = -1.0)
         : world(sphere_pair(kRigRadius, kRigRadius, gap), frictionless(bp.effective_modulus),
                 undamped()),
           section(bond_section(bp.radius_multiplier, kRigRadius, kRigRadius)),
@@ -37,7 +38,7 @@ struct BondRig {
           rest_distance(2.0 * kRigRadius + gap) {
         ParticleSet& p = world.edit_particles();
         p.flags[0] = p.flags[1] = kFixedVelocity | kFixedSpin;
-        REQUIRE(world.install_bonds(bp, 2.0 * gap + 1.0e-12) == 1);
+        REQUIRE(world.install_bonds(bp, reach < 0.0 ? 2.0 * gap + 1.0e-12 : reach) == 1);
         world.set_time_step(dt);
     }
     const ParallelBond& bond() const { return world.bonds().front(); }
