@@ -5,7 +5,7 @@
 // one number a shape parameter must move for the strain at peak to be met.
 //
 //   gradem-model-sweep <cube config.toml> [--model M] [--set key=value]...
-//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2]
+//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension]
 //
 // The base material is the config's [material] with --model and every --set applied (keys and
 // units of the material table, experiments/material_table.hpp; set as the calibration sets them,
@@ -15,7 +15,9 @@
 // Output, stdout, one object per line:
 //   {"model", "param", "value", "sand", "seed", "modulus_gpa", "peak_mpa", "strain_at_peak",
 //    "shape_index_d", "particles", "bonds", "broken", "steps", "wall_s", "particle_steps_per_s",
-//    "status"}
+//    "status"}; with --tension each point also runs the direct-tension test of the same packing
+// and material (the config's [tension] table) and adds "tensile_mpa", "strength_ratio" (σc/σt),
+// "tension_steps" and "tension_wall_s".
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -27,6 +29,7 @@
 #include "experiments/cube_test.hpp"
 #include "experiments/material_table.hpp"
 #include "experiments/packing_cache.hpp"
+#include "experiments/tension_config.hpp"
 
 using namespace gradem;
 
@@ -44,6 +47,7 @@ struct Options {
     std::vector<Sweep> sweeps;
     std::vector<std::string> sands;
     std::vector<std::uint64_t> seeds{1};
+    bool tension = false;
 };
 
 using bench::parse_number;
@@ -74,12 +78,13 @@ Options parse(int argc, char** argv) {
             }
         } else if (a == "--sands") o.sands = split_list(args.value());
         else if (a == "--seeds") o.seeds = bench::parse_number_list<std::uint64_t>(args.value(), a);
+        else if (a == "--tension") o.tension = true;
         else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
         else throw std::invalid_argument("unknown argument '" + a + "'");
     }
     if (o.config.empty())
         throw std::invalid_argument("usage: gradem-model-sweep <cube config.toml> [--model M] [--set key=value]... "
-                                    "[--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2]");
+                                    "[--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension]");
     return o;
 }
 
@@ -92,6 +97,24 @@ void apply(exp::MaterialParams& m, const std::string& key, double value) {
 }
 
 std::string json_string(const std::string& s) { return "\"" + s + "\""; }
+
+/// `, "tensile_mpa": ..` for the direct-tension test of this packing and material.
+std::string tension_fields(const exp::CubeConfig& c, const exp::Packing& packing, const exp::MaterialParams& material,
+                           double peak) {
+    exp::CubeConfig config = c;
+    config.material = material;
+    const exp::TensionConfig tension = exp::load_tension_config(config);
+    exp::TensionTestSpec spec = tension.spec;
+    spec.test.snapshot = {};
+    spec.test.loading.platen_friction = material.platen_friction;
+    spec.test.loading.strain_rate = exp::tension_strain_rate(config, tension, packing);
+    const exp::TensionTestResult t = exp::run_tension_test(packing, material, spec);
+    const double st = t.cube.macro.peak_stress_pa;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, ", \"tensile_mpa\": %.5g, \"strength_ratio\": %.4g, \"tension_steps\": %lld, \"tension_wall_s\": %.3f",
+                  st * 1e-6, st > 0.0 ? peak / st : 0.0, static_cast<long long>(t.cube.test.steps), t.cube.test.wall_seconds);
+    return buf;
+}
 
 void run_point(const exp::CubeConfig& base, const exp::MaterialParams& material, const std::string& param,
                double value, const Options& o) {
@@ -116,13 +139,14 @@ void run_point(const exp::CubeConfig& base, const exp::MaterialParams& material,
                 "{\"model\": %s, \"param\": %s, \"value\": %.6g, \"sand\": %s, \"seed\": %llu, \"modulus_gpa\": %.5g, "
                 "\"peak_mpa\": %.5g, \"strain_at_peak\": %.5g, \"shape_index_d\": %.4f, \"particles\": %zu, "
                 "\"bonds\": %zu, \"broken\": %zu, \"steps\": %lld, \"wall_s\": %.3f, \"particle_steps_per_s\": %.4g, "
-                "\"status\": %s}\n",
+                "\"status\": %s%s}\n",
                 json_string(bond_model_name(material.bond.model)).c_str(), json_string(param).c_str(), value,
                 json_string(sand).c_str(), static_cast<unsigned long long>(seed), e * 1e-9, peak * 1e-6, eps,
                 peak > 0.0 ? e * eps / peak : 0.0, r.particles, r.bonds, r.cracks.size(),
                 static_cast<long long>(r.test.steps), wall,
                 wall > 0.0 ? static_cast<double>(r.particles) * static_cast<double>(r.test.steps) / wall : 0.0,
-                json_string(r.diverged() ? "diverged" : r.test.stop_reason).c_str());
+                json_string(r.diverged() ? "diverged" : r.test.stop_reason).c_str(),
+                o.tension ? tension_fields(c, packing, material, peak).c_str() : "");
             std::fflush(stdout);
         }
     }

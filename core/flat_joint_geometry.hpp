@@ -149,8 +149,14 @@ namespace detail {
 
 /// The angles in (a0, a1) where the zero line γ + w.ξ = 0 crosses the arcs r0 and r1 (the
 /// kinks of the angular integrand), sorted, with a0 and a1 at the ends.
-inline std::vector<double> angular_pieces(const FlatElementGeometry& g, double gamma, double wy, double wz) {
-    std::vector<double> cuts{g.a0, g.a1};
+struct AngularCuts {
+    double at[6];  ///< a0, up to four kinks, a1
+    int count = 0;
+};
+
+inline AngularCuts angular_pieces(const FlatElementGeometry& g, double gamma, double wy, double wz) {
+    AngularCuts cuts;
+    cuts.at[cuts.count++] = g.a0;
     const double slope = std::hypot(wy, wz), direction = std::atan2(wz, wy);
     for (double r : {g.r0, g.r1}) {
         if (!(r > 0.0 && slope > 0.0)) continue;
@@ -159,10 +165,11 @@ inline std::vector<double> angular_pieces(const FlatElementGeometry& g, double g
         for (double a : {direction + std::acos(c), direction - std::acos(c)}) {
             while (a < g.a0) a += 2.0 * kPi;
             while (a >= g.a0 + 2.0 * kPi) a -= 2.0 * kPi;
-            if (a > g.a0 && a < g.a1) cuts.push_back(a);
+            if (a > g.a0 && a < g.a1) cuts.at[cuts.count++] = a;
         }
     }
-    std::sort(cuts.begin(), cuts.end());
+    cuts.at[cuts.count++] = g.a1;
+    std::sort(cuts.at, cuts.at + cuts.count);
     return cuts;
 }
 
@@ -172,9 +179,9 @@ inline std::vector<double> angular_pieces(const FlatElementGeometry& g, double g
 /// integrates a smooth function on each): accurate to ~1e-12 relative.
 inline CompressedPart compressed_part(const FlatElementGeometry& g, double gamma, double wy, double wz) {
     CompressedPart out;
-    const std::vector<double> cuts = detail::angular_pieces(g, gamma, wy, wz);
-    for (std::size_t piece = 0; piece + 1 < cuts.size(); ++piece) {
-        const double mid = 0.5 * (cuts[piece] + cuts[piece + 1]), half = 0.5 * (cuts[piece + 1] - cuts[piece]);
+    const detail::AngularCuts cuts = detail::angular_pieces(g, gamma, wy, wz);
+    for (int piece = 0; piece + 1 < cuts.count; ++piece) {
+        const double mid = 0.5 * (cuts.at[piece] + cuts.at[piece + 1]), half = 0.5 * (cuts.at[piece + 1] - cuts.at[piece]);
         for (std::size_t q = 0; q < g.node.size(); ++q) {
             const double a = mid + half * g.node[q], w = half * g.weight[q];
             const double ca = std::cos(a), sa = std::sin(a);

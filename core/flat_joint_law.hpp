@@ -104,6 +104,7 @@ namespace flat_detail {
 struct JointFrame {
     Vec3 t1, t2;
     double wy = 0, wz = 0;  ///< w = n x θ_b in (t1, t2) [rad]
+    double w_norm = 0;      ///< |w| [rad]
     double twist = 0;       ///< θ_t [rad]
 };
 
@@ -122,6 +123,7 @@ inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
     const double a = dot(bend_total, f.t1), b = dot(bend_total, f.t2);
     f.wy = -b;
     f.wz = a;
+    f.w_norm = std::sqrt(a * a + b * b);
     return f;
 }
 
@@ -153,7 +155,7 @@ inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& 
 /// Unbonded element at centroid gap g_e = g_0 + δ_e: no tension, compressed part integrated.
 inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, const Vec3& n, double kn,
                                   double R, double gap) {
-    const double spread = R * std::hypot(f.wy, f.wz) * g.reach;  // max |g(x) - g_e| over the element
+    const double spread = R * f.w_norm * g.reach;  // bounds |g(x) - g_e| over the element
     if (gap + spread <= 0.0) return linear_normal(g, f, n, kn, R, gap);
     NormalLoad out;
     if (gap - spread >= 0.0) {
