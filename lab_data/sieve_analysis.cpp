@@ -159,30 +159,35 @@ BareNumbers bare_numbers_of(const SieveColumn& c) {
 
 struct RowIdentity {
     std::optional<SieveDesignation> id;
+    std::string written;  // the sieve cell `id` comes from, as written (for messages)
     std::string label;    // the designation as written
-    std::string written;  // the first sieve cell as written (for messages)
     bool empty = true;    // no sieve cell holds text
 };
 
-// The sieve a row is for: the opening column's number, else a designation in either column.
+// The sieve a row is for: the opening column's number, else a designation in either column;
+// a Pan or Total in either wins.
 RowIdentity identify_row(const std::vector<Cell>& cells, const SieveHeader& h) {
     RowIdentity r;
-    std::optional<SieveDesignation> by_opening, by_name;
+    std::vector<RowIdentity> read;  // per sieve column with text
     for (const SieveColumn& c : h.columns) {
         if (!c.identifies_sieve()) continue;
         const std::string text = cell_text(cells, c.index);
         if (text.empty()) continue;
-        if (r.empty) r.written = text;
         r.empty = false;
-        auto& slot = c.measure == M::opening ? by_opening : by_name;
         const auto number = c.measure == M::opening ? parse_number(text, h.dialect, cells[c.index].quoted) : std::nullopt;
-        slot = number ? SieveDesignation{SieveRowKind::sieve, *number * c.to_si, {}} : parse_sieve_designation(text, h.dialect, bare_numbers_of(c));
         if (c.measure == M::designation || (!number && r.label.empty())) r.label = text;
+        RowIdentity one;
+        one.id = number ? SieveDesignation{SieveRowKind::sieve, *number * c.to_si, {}} : parse_sieve_designation(text, h.dialect, bare_numbers_of(c));
+        one.written = text;
+        read.insert(c.measure == M::opening ? read.begin() : read.end(), one);  // the opening column first
     }
-    auto usable = [](const auto& d) { return d && d->problem.empty(); };
-    for (const auto* d : {&by_opening, &by_name})
-        if (usable(*d) && (*d)->kind != SieveRowKind::sieve) { r.id = **d; return r; }  // Pan or Total
-    r.id = usable(by_opening) ? by_opening : usable(by_name) ? by_name : by_opening ? by_opening : by_name;
+    auto usable = [](const RowIdentity& x) { return x.id && x.id->problem.empty(); };
+    auto pick = [&](auto&& pred) { return std::find_if(read.begin(), read.end(), pred); };
+    auto it = pick([&](const RowIdentity& x) { return usable(x) && x.id->kind != SieveRowKind::sieve; });
+    if (it == read.end()) it = pick(usable);
+    if (it == read.end()) it = pick([](const RowIdentity& x) { return x.id.has_value(); });
+    if (it == read.end() && !read.empty()) it = read.begin();
+    if (it != read.end()) r.id = it->id, r.written = it->written;
     return r;
 }
 
@@ -217,7 +222,7 @@ std::optional<TableRow> read_row(const std::vector<Cell>& cells, const SieveHead
     if (r.empty) r.id = SieveDesignation{SieveRowKind::pan, 0, {}};  // a row without sieve name: the pan
     if (!r.id)
         throw InputError(file, line, in_quotes(r.written) + " is not a sieve: expected " + accepted_sieve_designations());
-    if (!r.id->problem.empty()) throw InputError(file, line, r.id->problem);
+    if (!r.id->problem.empty()) throw InputError(file, line, in_quotes(r.written) + " " + r.id->problem);
     if (r.id->kind == SieveRowKind::sieve) {
         check_cell_count(cells, h, file, line);
         if (!(r.id->opening_m > 0)) throw InputError(file, line, "sieve " + in_quotes(r.written) + ": the opening must be > 0");

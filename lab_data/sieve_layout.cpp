@@ -130,7 +130,7 @@ std::string normalise_word(std::string_view w) {
     std::string n;
     for (char c : to_lower(w))
         if (c != '.' && c != '#' && c != '(' && c != ')' && c != '[' && c != ']' && c != ':' && c != ',' && c != '-') n += c;
-    if (n == "percent" || n == "pct") n = "%";
+    if (n == "percent" || n == "pct") n.assign(1, '%');
     return n;
 }
 
@@ -190,7 +190,8 @@ AliasMatch best_alias(const std::vector<Word>& words) {
 
 // Unit and basis of a column from its alias and unit; sets `problem` when they do not fit.
 void resolve_unit(SieveColumn& c, const std::optional<SieveUnit>& unit, const std::string& unit_text) {
-    const std::string quoted = "'" + trim(unit_text) + "'";
+    std::string quoted(1, '\'');  // built in steps: GCC 12 misreports "'" + s + "'" (-Wrestrict)
+    quoted.append(trim(unit_text)).push_back('\'');
     if (c.identifies_sieve()) {
         if (unit && unit->kind != SieveUnit::length) c.problem = "unit " + quoted + " is not a length; a sieve size needs mm, µm or in";
         if (unit && unit->kind == SieveUnit::length) { c.measure = M::opening; c.to_si = unit->factor; }
@@ -245,10 +246,10 @@ bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::
 
 SieveDesignation sieve_at(double opening_m) { return {SieveRowKind::sieve, opening_m, {}}; }
 
-SieveDesignation us_sieve(double number, std::string_view written) {
+SieveDesignation us_sieve(double number) {
     for (const auto& s : kUsSieves)
         if (close(s.number, number)) return sieve_at(s.opening_mm * 1e-3);
-    return {SieveRowKind::sieve, 0, "'" + trim(written) + "' is not an ASTM E11 sieve number (No. 3.5 to No. 635)"};
+    return {SieveRowKind::sieve, 0, "is not an ASTM E11 sieve number (No. 3.5 to No. 635)"};
 }
 
 SieveDesignation inch_sieve(double inches) {
@@ -315,11 +316,11 @@ std::optional<SieveDesignation> parse_size(const std::string& s, const Dialect& 
         if (!u || u->quantity != Quantity::length) return std::nullopt;
         return sieve_at(*value * u->to_si);
     }
-    if (bare.us_sieve) return us_sieve(*value, s);
+    if (bare.us_sieve) return us_sieve(*value);
     if (bare.unit_m == kInch) return inch_sieve(*value);
     if (bare.unit_m > 0) return sieve_at(*value * bare.unit_m);
     return SieveDesignation{SieveRowKind::sieve, 0,
-                            "'" + s + "' is ambiguous: write No. " + s + ", " + s + " mm or " + s +
+                            "is ambiguous: write No. " + s + ", " + s + " mm or " + s +
                                 "\", or name the column 'Sieve No.' (US numbers) or 'Opening (mm)'"};
 }
 
@@ -329,8 +330,8 @@ std::optional<SieveDesignation> parse_plain_designation(const std::string& s, co
     if (first == "total" || first == "totals" || first == "sum") return SieveDesignation{SieveRowKind::total, 0, {}};
     if (const auto rest = us_number_part(s)) {
         const auto n = parse_number(*rest, Dialect{});
-        if (!n) return SieveDesignation{SieveRowKind::sieve, 0, "'" + s + "' is not an ASTM E11 sieve number (No. 3.5 to No. 635)"};
-        return us_sieve(*n, s);
+        if (!n) return SieveDesignation{SieveRowKind::sieve, 0, "is not an ASTM E11 sieve number (No. 3.5 to No. 635)"};
+        return us_sieve(*n);
     }
     return parse_size(s, dialect, bare);
 }
@@ -353,7 +354,7 @@ std::optional<SieveColumn> classify_sieve_header(std::string_view header, std::s
     std::string sand;
     for (std::size_t i = 0; i < words.size(); ++i) {
         if (i >= m.begin && i < m.end) continue;
-        if (words[i].norm == "%" && nu.unit.empty()) { nu.unit = "%"; continue; }
+        if (words[i].norm == "%" && nu.unit.empty()) { nu.unit.assign(1, '%'); continue; }
         for (const char* w : kLimitWords)
             if (words[i].norm == w && !c.identifies_sieve()) return std::nullopt;
         sand += (sand.empty() ? "" : " ") + words[i].text;

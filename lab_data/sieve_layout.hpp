@@ -61,7 +61,7 @@ enum class SieveRowKind { sieve, pan, total };
 struct SieveDesignation {
     SieveRowKind kind = SieveRowKind::sieve;
     double opening_m = 0;  ///< sieves only [m]
-    std::string problem;   ///< non-empty: written like a designation but not one (e.g. "No. 13")
+    std::string problem;   ///< non-empty: written like a designation but not one; completes "'No. 13' ..."
 };
 
 /// How a designation cell reads bare numbers ("4", "3/8"): as US sieve numbers, as a size in
