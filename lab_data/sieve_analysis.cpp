@@ -106,14 +106,15 @@ std::size_t apply_units_row(SieveHeader& h, const Lines& lines) {
     if (next >= lines.size() || classify_row(lines[next], h.dialect) != RowKind::text) return next;
     const auto units = split_cells(lines[next], h.dialect.delimiter).cells;
     std::size_t named = 0;
+    auto no_unit = [](const Cell& u) { const std::string t = trim(u.text); return t.empty() || t == "-" || t == "()" || t == "[]"; };
     for (const Cell& u : units) {
-        if (is_blank(u.text)) continue;
+        if (no_unit(u)) continue;
         if (!is_sieve_unit(u.text)) return next;
         ++named;
     }
     if (named == 0) return next;
     for (SieveColumn& c : h.columns)
-        if (c.index < units.size() && !is_blank(units[c.index].text)) c = *classify_sieve_header(c.header, c.index, units[c.index].text);
+        if (c.index < units.size() && !no_unit(units[c.index])) c = *classify_sieve_header(c.header, c.index, units[c.index].text);
     return next + 1;
 }
 
@@ -139,6 +140,7 @@ struct TableRow {
     std::string designation;
     int line = 0;
     std::vector<Cell> cells;
+    bool has_numbers = false;  // in a value column
 };
 
 struct SieveTable {
@@ -227,7 +229,7 @@ std::optional<TableRow> read_row(const std::vector<Cell>& cells, const SieveHead
         check_cell_count(cells, h, file, line);
         if (!(r.id->opening_m > 0)) throw InputError(file, line, "sieve " + in_quotes(r.written) + ": the opening must be > 0");
     }
-    return TableRow{r.id->kind, r.id->opening_m, r.label, line, cells};
+    return TableRow{r.id->kind, r.id->opening_m, r.label, line, cells, numbers};
 }
 
 // Adds a row to the table; a second Pan or Total row is an error.
@@ -250,6 +252,7 @@ std::size_t read_rows(SieveTable& t, const Lines& lines, std::size_t first) {
         if (std::all_of(split.cells.begin(), split.cells.end(), [](const Cell& c) { return is_blank(c.text); })) continue;
         auto row = read_row(split.cells, t.header, t.file, line);
         if (!row) break;
+        if (row->kind != SieveRowKind::sieve && !row->has_numbers) continue;  // "Pan," or "Total mass: see below": nothing to read
         add_row(t, std::move(*row));
         t.last_line = line;
     }

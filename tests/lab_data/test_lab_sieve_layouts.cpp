@@ -127,6 +127,17 @@ TEST_CASE("lab: sieve layouts: what each layout records besides the curve", "[la
     CHECK(read_sieve_csv(kLayouts / "01_snake_case.csv").provenance.empty());
 }
 
+TEST_CASE("lab: sieve layouts: rows that only look like Pan or Total, units rows with '-'", "[lab][sieve][layouts]") {
+    // "Total mass before washing: ..." below the table holds no number in a value column: not a
+    // second Total row. A units row may mark unitless columns with '-'.
+    const SieveAnalysis s = parse_sieve_csv("Sieve,Mass Retained,Remark\n-,(g),-\n#4,0,\n#16,100,\n#50,300,\nPan,100,\n"
+                                            "Total,500,\n\nTotal mass before washing: 501 g\n",
+                                            "notes.csv");
+    CHECK(s.total_g == 500.0);
+    CHECK(s.rows.size() == 3);
+    CHECK(s.rows[2].passing == Approx(0.2));
+}
+
 TEST_CASE("lab: sieve layouts: several sands in one file", "[lab][sieve][layouts]") {
     for (const char* file : {"11_two_sands_percent_passing.csv", "12_two_sands_masses_semicolon.csv"}) {
         INFO(file);
