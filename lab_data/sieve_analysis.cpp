@@ -54,7 +54,7 @@ struct SieveHeader {
 // comment, a row with numbers, a row without any sieve column).
 std::optional<SieveHeader> columns_at(const Lines& lines, std::size_t i, char delimiter) {
     const std::string first = trim(lines[i]);
-    if (first.empty() || first.front() == '#') return std::nullopt;
+    if (first.empty() || first.front() == '#' || !may_hold_sieve_header(first)) return std::nullopt;
     if (classify_row(lines[i], Dialect{delimiter, '.'}) != RowKind::text) return std::nullopt;
     const auto cells = split_cells(lines[i], delimiter).cells;
     if (cells.size() < 2) return std::nullopt;
@@ -80,13 +80,23 @@ bool sieve_like(const SieveHeader& h) {
     });
 }
 
-/// First line at or after `from` that is a complete header (tab, ';' then ',' tried per line),
-/// or with `partial` the first that is sieve-like.
-std::optional<SieveHeader> find_sieve_header(const Lines& lines, std::size_t from, bool partial = false) {
+struct HeaderSearch {
+    std::optional<SieveHeader> complete, partial;  // the first complete and the first sieve-like header
+};
+
+/// From line `from` on, the first complete header (tab, ';' then ',' tried per line) and the
+/// first sieve-like one before it; with `stop_at_partial`, stops at the first sieve-like one.
+HeaderSearch find_sieve_header(const Lines& lines, std::size_t from, bool stop_at_partial = false) {
+    HeaderSearch found;
     for (std::size_t i = from; i < lines.size(); ++i)
-        for (char d : {'\t', ';', ','})
-            if (auto h = columns_at(lines, i, d); h && (partial ? sieve_like(*h) : complete(*h))) return h;
-    return std::nullopt;
+        for (char d : {'\t', ';', ','}) {
+            auto h = columns_at(lines, i, d);
+            if (!h) continue;
+            if (!found.partial && sieve_like(*h)) found.partial = h;
+            if (complete(*h)) { found.complete = std::move(h); return found; }
+            if (stop_at_partial && found.partial) return found;
+        }
+    return found;
 }
 
 // Decimal separator sniffed (text.hpp) over the rows below the header that split like it.
@@ -286,8 +296,9 @@ void read_metadata(SieveTable& t, const Lines& lines, std::size_t begin, std::si
 SieveHeader locate_header(const Lines& lines, const std::string& file) {
     if (std::all_of(lines.begin(), lines.end(), [](auto l) { return is_blank(l); }))
         throw InputError(file, 1, std::string("file is empty: expected a sieve table with ") + accepted_sieve_columns());
-    if (auto h = find_sieve_header(lines, 0)) return *h;
-    const auto partial = find_sieve_header(lines, 0, true);
+    const HeaderSearch found = find_sieve_header(lines, 0);
+    if (found.complete) return *found.complete;
+    const auto& partial = found.partial;
     std::string named;
     if (partial)
         for (const SieveColumn& c : partial->columns) named += (named.empty() ? "" : ", ") + in_quotes(c.header);
@@ -308,7 +319,7 @@ SieveTable read_table(std::string_view bytes, const std::string& file) {
     t.last_line = t.header.line();
     read_metadata(t, lines, 0, t.header.index);
     const std::size_t end = read_rows(t, lines, first);
-    if (const auto second = find_sieve_header(lines, end))
+    if (const auto second = find_sieve_header(lines, end).complete)
         throw InputError(file, second->line(), "a second sieve table starts here (the first has its header at line " +
                                                    std::to_string(t.header.line()) + "): one table per file");
     read_metadata(t, lines, end, lines.size());
@@ -626,7 +637,7 @@ std::vector<SieveAnalysis> read_sieve_csv_all(const fs::path& path) {
 bool looks_like_sieve_csv(std::string_view bytes) {
     const std::string text = decode_text(bytes).utf8;
     const Lines lines = split_lines(text);
-    return find_sieve_header(lines, 0, true).has_value();
+    return find_sieve_header(lines, 0, true).partial.has_value();
 }
 
 bool is_sieve_csv_file(const fs::path& path) {

@@ -1,5 +1,6 @@
 #include "lab_data/sieve_layout.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -163,6 +164,19 @@ const std::vector<std::vector<std::string>>& alias_words() {
         return all;
     }();
     return words;
+}
+
+// The longest word of each alias phrase: a header cell with that alias contains it.
+const std::vector<std::string>& alias_key_words() {
+    static const auto keys = [] {
+        std::vector<std::string> all;
+        for (const auto& words : alias_words()) {
+            const auto longest = std::max_element(words.begin(), words.end(), [](auto& a, auto& b) { return a.size() < b.size(); });
+            if (std::find(all.begin(), all.end(), *longest) == all.end()) all.push_back(*longest);
+        }
+        return all;
+    }();
+    return keys;
 }
 
 struct AliasMatch {
@@ -362,6 +376,12 @@ std::optional<SieveColumn> classify_sieve_header(std::string_view header, std::s
     c.sand = trim_separators(sand);
     resolve_unit(c, read_sieve_unit(nu.unit), nu.unit);
     return c;
+}
+
+bool may_hold_sieve_header(std::string_view line) {
+    const std::string lower = to_lower(line);
+    return std::any_of(alias_key_words().begin(), alias_key_words().end(),
+                       [&](const std::string& w) { return lower.find(w) != std::string::npos; });
 }
 
 bool is_sieve_unit(std::string_view text) { return read_sieve_unit(text).has_value(); }

@@ -49,6 +49,10 @@ struct SieveColumn {
 std::optional<SieveColumn> classify_sieve_header(std::string_view header, std::size_t index,
                                                  std::string_view unit = {});
 
+/// False when no cell of `line` can be a sieve column (it lacks every alias's key word): a
+/// quick test before classify_sieve_header() on each cell.
+bool may_hold_sieve_header(std::string_view line);
+
 /// True when `text` is a unit a sieve table uses: a length, a mass or '%'.
 bool is_sieve_unit(std::string_view text);
 
