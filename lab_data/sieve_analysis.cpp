@@ -69,8 +69,8 @@ std::optional<SieveHeader> columns_at(const Lines& lines, std::size_t i, char de
 }
 
 bool complete(const SieveHeader& h) {
-    const auto identity = std::count_if(h.columns.begin(), h.columns.end(), [](auto& c) { return c.identifies_sieve(); });
-    return identity > 0 && static_cast<std::size_t>(identity) < h.columns.size();
+    auto has = [&](auto&& pred) { return std::any_of(h.columns.begin(), h.columns.end(), pred); };
+    return has([](auto& c) { return c.identifies_sieve(); }) && has([](auto& c) { return !c.identifies_sieve() && !c.limit; });
 }
 
 // A header naming a value column or a "sieve" column, even if the table lacks the rest.
@@ -132,7 +132,7 @@ std::size_t apply_units_row(SieveHeader& h, const Lines& lines) {
 void check_header(const SieveHeader& h, const std::string& file) {
     const SieveColumn* seen[2] = {nullptr, nullptr};  // designation, opening
     for (const SieveColumn& c : h.columns) {
-        if (!c.problem.empty()) throw InputError(file, h.line(), column_prefix(c.header) + c.problem);
+        if (!c.problem.empty() && !c.limit) throw InputError(file, h.line(), column_prefix(c.header) + c.problem);
         if (!c.identifies_sieve()) continue;
         const SieveColumn*& other = seen[c.measure == M::opening ? 1 : 0];
         if (other)
@@ -205,7 +205,7 @@ RowIdentity identify_row(const std::vector<Cell>& cells, const SieveHeader& h) {
 
 bool holds_number(const std::vector<Cell>& cells, const SieveHeader& h) {
     for (const SieveColumn& c : h.columns) {
-        if (c.identifies_sieve()) continue;
+        if (c.identifies_sieve() || c.limit) continue;
         std::string t = cell_text(cells, c.index);
         if (!t.empty() && t.back() == '%') t.pop_back();
         if (parse_number(t, h.dialect, c.index < cells.size() && cells[c.index].quoted)) return true;
@@ -216,7 +216,7 @@ bool holds_number(const std::vector<Cell>& cells, const SieveHeader& h) {
 // Cells a sieve row must have (up to the last column read) and may have (up to the header's).
 void check_cell_count(const std::vector<Cell>& cells, const SieveHeader& h, const std::string& file, int line) {
     std::size_t needed = 0;
-    for (const SieveColumn& c : h.columns) needed = std::max(needed, c.index + 1);
+    for (const SieveColumn& c : h.columns) needed = c.limit ? needed : std::max(needed, c.index + 1);
     if (cells.size() < needed)
         throw InputError(file, line, "truncated row: found " + std::to_string(cells.size()) + " cells, expected " +
                                          std::to_string(needed) + " (header at line " + std::to_string(h.line()) + ")");
@@ -299,11 +299,13 @@ SieveHeader locate_header(const Lines& lines, const std::string& file) {
     const HeaderSearch found = find_sieve_header(lines, 0);
     if (found.complete) return *found.complete;
     const auto& partial = found.partial;
-    std::string named;
+    std::string named, limits;
+    auto add = [](std::string& list, const std::string& header) { list += (list.empty() ? "" : ", ") + in_quotes(header); };
     if (partial)
-        for (const SieveColumn& c : partial->columns) named += (named.empty() ? "" : ", ") + in_quotes(c.header);
+        for (const SieveColumn& c : partial->columns) add(c.limit ? limits : named, c.header);
+    const std::string limit_note = limits.empty() ? "" : " (" + limits + " are specification limits, e.g. ASTM C144's: not a sand)";
     throw InputError(file, partial ? partial->line() : 1,
-                     (partial ? "this row names " + named + " but a" : std::string("no sieve-table header found: a")) +
+                     (partial ? "this row names " + named + limit_note + " but a" : std::string("no sieve-table header found: a")) +
                          " sieve table needs " + accepted_sieve_columns());
 }
 
@@ -508,7 +510,7 @@ struct SandColumns {
 std::vector<SandColumns> sands_of(const SieveTable& t) {
     std::vector<SandColumns> sands;
     for (const SieveColumn& c : t.header.columns) {
-        if (c.identifies_sieve()) continue;
+        if (c.identifies_sieve() || c.limit) continue;
         auto it = std::find_if(sands.begin(), sands.end(), [&](auto& s) { return to_lower(s.name) == to_lower(c.sand); });
         if (it == sands.end()) it = sands.insert(sands.end(), SandColumns{c.sand, {}});
         for (const SieveColumn* other : it->columns)

@@ -369,8 +369,7 @@ std::optional<SieveColumn> classify_sieve_header(std::string_view header, std::s
     for (std::size_t i = 0; i < words.size(); ++i) {
         if (i >= m.begin && i < m.end) continue;
         if (words[i].norm == "%" && nu.unit.empty()) { nu.unit.assign(1, '%'); continue; }
-        for (const char* w : kLimitWords)
-            if (words[i].norm == w && !c.identifies_sieve()) return std::nullopt;
+        for (const char* w : kLimitWords) c.limit = c.limit || (words[i].norm == w && !c.identifies_sieve());
         sand += (sand.empty() ? "" : " ") + words[i].text;
     }
     c.sand = trim_separators(sand);

@@ -37,15 +37,16 @@ struct SieveColumn {
     bool bare_numbers_are_us_sieves = false;  ///< designation column: "4" means No. 4
     std::string sand;            ///< header text around the alias ("Sand A"); may be empty
     std::string problem;         ///< non-empty: a sieve column that cannot be used, and why
+    bool limit = false;          ///< a specification limit ("C144 min % passing"), not a sand: not read
 
     [[nodiscard]] bool identifies_sieve() const {
         return measure == SieveMeasure::designation || measure == SieveMeasure::opening;
     }
 };
 
-/// Reads one header cell. nullopt for cells that are not sieve columns (notes, specification
-/// limits such as "Spec min % passing", anything unknown). `unit` (e.g. from a units row below
-/// the header) is used when the header itself names none.
+/// Reads one header cell. nullopt for cells that are not sieve columns (notes, anything
+/// unknown); specification limits ("Spec min % passing") come back with `limit` set. `unit`
+/// (e.g. from a units row below the header) is used when the header itself names none.
 std::optional<SieveColumn> classify_sieve_header(std::string_view header, std::size_t index,
                                                  std::string_view unit = {});
 

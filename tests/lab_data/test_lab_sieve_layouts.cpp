@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/input_error.hpp"
+#include "common/text_file.hpp"
 #include "lab_data/sieve_layout.hpp"
 #include "lab_data/sieve_table.hpp"
 
@@ -127,6 +128,14 @@ TEST_CASE("lab: sieve layouts: what each layout records besides the curve", "[la
     CHECK(read_sieve_csv(kLayouts / "01_snake_case.csv").provenance.empty());
 }
 
+TEST_CASE("lab: sieve layouts: specification limit columns beside a sand are not read", "[lab][sieve][layouts]") {
+    const std::vector<SieveAnalysis> all =
+        parse_sieve_csv_all("Sieve,% Passing,C144 min % passing,C144 max % passing\nNo. 4,100,95,100\nNo. 16,80,50,85\n", "spec.csv");
+    REQUIRE(all.size() == 1);
+    CHECK(all[0].columns == std::vector<std::string>{"% Passing"});
+    CHECK(all[0].rows[1].passing == Approx(0.80));
+}
+
 TEST_CASE("lab: sieve layouts: rows that only look like Pan or Total, units rows with '-'", "[lab][sieve][layouts]") {
     // "Total mass before washing: ..." below the table holds no number in a value column: not a
     // second Total row. A units row may mark unitless columns with '-'.
@@ -225,7 +234,8 @@ TEST_CASE("lab: sieve headers: aliases, units and sand names", "[lab][sieve][lay
     CHECK(column("% Passing (Sand B)").sand == "Sand B");
     CHECK_THAT(column("Retained").problem, Contains("give its unit"));
     CHECK_THAT(column("% Retained (g)").problem, Contains("is a mass but the column is a percentage"));
-    CHECK_FALSE(classify_sieve_header("C144 min % passing", 0));  // a specification limit
+    CHECK(column("C144 min % passing").limit);  // a specification limit, not a sand
+    CHECK_FALSE(column("Sand A % passing").limit);
     CHECK_FALSE(classify_sieve_header("Load (kN)", 0));
 }
 
@@ -271,6 +281,9 @@ TEST_CASE("lab: bad sieve table: a table without the columns it needs says which
                    Contains("% Passing") && Contains("Mass Retained (g|kg)"));
     CHECK_THAT(error_of("Sieve,Retained\n#4,0\n", "unit.csv"), Contains("unit.csv:1: column 'Retained': give its unit: (g), (kg) or (%)"));
     CHECK_THAT(error_of("a,b\n1,2\n", "none.csv"), Contains("none.csv:1: no sieve-table header found"));
+    const std::string c144 = std::string(GRADEM_LAB_STUDY) + "/astm_c144_natural_sand.csv";
+    CHECK_THAT(error_of(gradem::common::read_file_bytes(c144), "c144.csv"),
+               Contains("c144.csv:3: this row names 'sieve', 'opening_mm' ('min_passing_pct', 'max_passing_pct' are specification limits"));
     CHECK_THAT(error_of("\n\n", "empty.csv"), Contains("empty.csv:1: file is empty"));
 }
 
