@@ -11,7 +11,8 @@
 //   [gradation]  c144_limits (CSV path)
 //   [columns]    time/load/crosshead/strain/lateral_strain/stress = "column name",
 //                <role>_unit = "kN" (overrides of the inferred roles and units)
-//   [[sand]]     name, sieve (CSV path), specific_gravity
+//   [[sand]]     name, sieve (CSV path; "file.csv#Sand B" picks one sand of a file with several),
+//                specific_gravity
 //   [[sand.batch]] name, files (glob or array of globs; '*' and '?' in the file-name part)
 
 #include <filesystem>

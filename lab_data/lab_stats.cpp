@@ -162,15 +162,9 @@ LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConf
 
 namespace {
 
-// "pre-blended (natural river sand ...)" -> "pre-blended"; falls back to the file stem.
+// The analysis's sand (its column headers or "# sand:" line), else the file stem.
 std::string sand_name_of(const SieveAnalysis& sieve, const fs::path& file) {
-    for (const MetaEntry& m : sieve.metadata)
-        if (m.key == "sand" && !trim(m.value).empty()) {
-            const std::string v{trim(m.value)};
-            const auto paren = v.find(" (");
-            return paren == std::string::npos ? v : v.substr(0, paren);
-        }
-    return file.stem().string();
+    return sieve.sand.empty() ? file.stem().string() : sieve.sand;
 }
 
 }  // namespace
@@ -181,12 +175,15 @@ LabStats analyse_sieve_files(const std::vector<fs::path>& files, const fs::path&
     lab.source = "sieve files";
     std::optional<C144Limits> limits;
     if (!c144_limits.empty()) limits = read_c144_limits(c144_limits);
-    for (const fs::path& f : files) {
-        SandResult sand;
-        gradation_of(sand, f, limits ? &*limits : nullptr);
-        sand.name = sand_name_of(*sand.sieve, f);
-        lab.sands.push_back(std::move(sand));
-    }
+    for (const fs::path& f : files)
+        for (SieveAnalysis& analysis : read_sieve_csv_all(f)) {
+            SandResult sand;
+            sand.name = sand_name_of(analysis, f);
+            sand.gradation = analyse_gradation(analysis.curve);
+            if (limits) sand.c144 = check_c144(analysis.curve, *limits);
+            sand.sieve = std::move(analysis);
+            lab.sands.push_back(std::move(sand));
+        }
     return lab;
 }
 

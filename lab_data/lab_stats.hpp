@@ -86,8 +86,9 @@ LabStats analyse_lab_dataset(const DatasetConfig& config);
 /// the result has one pseudo-sand "files" with their statistics.
 LabStats analyse_lab_files(const std::vector<std::filesystem::path>& files, const DatasetConfig& config);
 
-/// Sieve analyses given as files (`gradem lab sieve.csv ...`): one sand per file, named by its
-/// "# sand:" line (text before " (") or else the file stem, with gradation indices and, when
+/// Sieve analyses given as files (`gradem lab sieve.csv ...`): every sand of every file (only
+/// the named one for "file.csv#sand"), named by its column headers or "# sand:" line (text
+/// before " (") or else the file stem, with gradation indices and, when
 /// `c144_limits` is not empty, the ASTM C144 check. Throws InputError for impossible tables.
 LabStats analyse_sieve_files(const std::vector<std::filesystem::path>& files, const std::filesystem::path& c144_limits);
 

@@ -28,7 +28,7 @@ for t in "${targets[@]}"; do
   artifacts="$build/fuzz/artifacts/$t"
   mkdir -p "$corpus" "$artifacts"
   if [ "$t" = sieve_table ]; then
-    cp "$fixtures"/sieve_*.csv "$study"/sieve_*.csv "$study"/astm_c144_*.csv "$corpus"/
+    cp "$fixtures"/sieve_*.csv "$fixtures"/sieve_layouts/*.csv "$study"/sieve_*.csv "$study"/astm_c144_*.csv "$corpus"/
   else
     cp "$fixtures"/*.csv "$fixtures"/*.dat "$corpus"/
     cp "$study"/cubes/PB1-C01.csv "$corpus"/

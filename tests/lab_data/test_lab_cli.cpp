@@ -232,3 +232,26 @@ TEST_CASE("lab: sieve analysis files are recognised and their gradation printed"
     // Mixed inputs are a usage error.
     CHECK(run({fixture("sieve_passing.csv"), fixture("plain.csv"), "--no-write"}).status == 2);
 }
+
+TEST_CASE("lab: sieve files in lab layouts: every sand of a file, or the one named after '#'", "[lab][cli][sieve]") {
+    const std::string two = fixture("sieve_layouts/12_two_sands_masses_semicolon.csv");
+    const Run all = run({two, fixture("sieve_layouts/04_semicolon_decimal_comma_bom_crlf.csv"), "--no-write", "--json"});
+    REQUIRE(all.status == 0);
+    const auto j = nlohmann::json::parse(all.out);
+    REQUIRE(j["sands"].size() == 3);
+    CHECK(j["sands"][0]["name"] == "Pre-blended");
+    CHECK(j["sands"][1]["name"] == "Van Buren");
+    CHECK(j["sands"][2]["name"] == "04_semicolon_decimal_comma_bom_crlf");  // no sand named: the file stem
+    // Van Buren's Table 2 curve at the E11 openings, read from masses: D50 between No. 50
+    // (0.300 mm, 14.4 %) and No. 40 (0.425 mm, 51.9 %) = 0.3 · (0.425/0.3)^(35.6/37.5) = 0.41757 mm.
+    CHECK(j["sands"][1]["gradation"]["d50_mm"].get<double>() == Approx(0.41757).epsilon(1e-4));
+    const Run one = run({two + "#Van Buren", "--no-write", "--json"});
+    REQUIRE(one.status == 0);
+    const auto k = nlohmann::json::parse(one.out);
+    REQUIRE(k["sands"].size() == 1);
+    CHECK(k["sands"][0]["name"] == "Van Buren");
+    CHECK(k["sands"][0]["gradation"]["d50_mm"] == j["sands"][1]["gradation"]["d50_mm"]);
+    const Run none = run({two + "#Sand C", "--no-write"});
+    CHECK(none.status == 1);
+    CHECK_THAT(none.err, Catch::Contains("12_two_sands_masses_semicolon.csv:2: no sand 'Sand C'"));
+}
