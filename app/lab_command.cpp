@@ -124,10 +124,12 @@ Reads lab data and reduces it to the statistics calibration uses.
       Cu, Cc, USCS, fineness modulus, ASTM C144 verdicts) and Table 4-style statistics
       (ASTM C109 strength, strain at peak, ASTM C469 chord modulus), Welch t-tests
       between sands, ASTM C109 permissible-range flags.
-  sieve analysis files (CSV with opening_mm and percent_passing or mass_retained_g + a pan
-      row; recognised from the header): each file's gradation (Table 2, D-values, Cu, Cc,
-      USCS, fineness modulus; ASTM C144 with --c144); impossible tables are rejected naming
-      the file, line and rule.
+  sieve analysis files (CSV/TSV, any delimiter, decimal commas; a sieve or opening column
+      - US/ISO designations, mm, um or in - and percent passing, cumulative or individual
+      retained, or retained masses with a Pan row; several sands as columns, FILE#sand picks
+      one; recognised from the header, lab_data/README.md lists the names): each file's
+      gradation (Table 2, D-values, Cu, Cc, USCS, fineness modulus; ASTM C144 with --c144);
+      impossible tables are rejected naming the file, line and rule.
   export files (MTS TestSuite CSV, MTS 793 specimen.dat, Instron Bluehill RawData, plain CSV;
       the format is detected from the content): each file is reduced.
 
