@@ -5,6 +5,8 @@
 // speed-up. Not a test: numbers depend on the machine; quote medians of several runs.
 //
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json]
+//                [--models parallel_bond,soft_bond,flat_joint]   (one row set per bond law; the
+//                flat joint with N_r 1, N_α 4, its rows carry the element counts)
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
 //                at size ratios 1, 10, 50 instead: bench/neighbor_bench.cpp)
 //   gradem-bench --genesis 20000,200000 [--json]   (genesis rows instead: bench/genesis_bench.cpp)
@@ -45,6 +47,7 @@ struct Options {
     std::vector<std::int64_t> genesis;  ///< genesis rows at these grain counts (then nothing else)
     bool full_cube = false;             ///< the full-size cube's figures (then nothing else)
     bool steps_given = false;
+    std::vector<BondModel> models{BondModel::parallel_bond};
     bench::FullCubeOptions cube;        ///< --full-cube settings
 };
 
@@ -70,9 +73,17 @@ Options parse(int argc, char** argv) {
         else if (a == "--json") o.json = true;
         else if (a == "--neighbors") o.neighbors = std::stoll(value());
         else if (a == "--genesis") o.genesis = parse_list<std::int64_t>(value());
+        else if (a == "--models") {
+            o.models.clear();
+            for (const std::string& name : bench::split_list(value())) {
+                const auto m = parse_bond_model(name);
+                if (!m) throw std::invalid_argument("--models: unknown bond model '" + name + "'");
+                o.models.push_back(*m);
+            }
+        }
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
-                         "[--repeat R] [--json]\n"
+                         "[--repeat R] [--json] [--models parallel_bond,soft_bond,flat_joint]\n"
                          "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
                          "       gradem-bench --genesis N1,N2,... [--json]\n"
                          "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
@@ -88,6 +99,7 @@ Options parse(int argc, char** argv) {
 using bench::peak_rss_bytes;
 
 struct Sample {
+    BondModel model = BondModel::parallel_bond;
     std::int64_t n = 0, bonds = 0, steps = 0;
     int threads = 1;
     double seconds = 0, build_seconds = 0;
@@ -97,7 +109,7 @@ struct Sample {
 };
 
 // A bonded packing between platens closing at a strain rate of 1/s (typical test speed).
-World make_world(const exp::QuickPacking& packing) {
+World make_world(const exp::QuickPacking& packing, BondModel model = BondModel::parallel_bond) {
     ContactParams contact;
     contact.effective_modulus = 10.0e9;
     contact.stiffness_ratio = 1.5;
@@ -109,6 +121,7 @@ World make_world(const exp::QuickPacking& packing) {
     bond.tensile_strength_std = 1.6e6;
     bond.cohesion_mean = 16.0e6;
     bond.cohesion_std = 3.2e6;
+    bond.model = model;
     world.install_bonds(bond, packing.bond_gap);
     exp::add_platens(world, 0.5);
     const double height = world.walls()[1].point.z - world.walls()[0].point.z;
@@ -117,18 +130,20 @@ World make_world(const exp::QuickPacking& packing) {
     return world;
 }
 
-Sample run_once(const exp::QuickPacking& packing, int threads, std::int64_t steps) {
+Sample run_once(const exp::QuickPacking& packing, int threads, std::int64_t steps,
+                BondModel model = BondModel::parallel_bond) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #endif
     Sample s;
     const auto t0 = std::chrono::steady_clock::now();
-    World world = make_world(packing);
+    World world = make_world(packing, model);
     world.run(20);  // first neighbour build, time step, caches warm
     const auto t1 = std::chrono::steady_clock::now();
     const StepProfile before = world.profile();
     world.run(steps);
     const auto t2 = std::chrono::steady_clock::now();
+    s.model = model;
     s.n = static_cast<std::int64_t>(world.particles().size());
     s.bonds = static_cast<std::int64_t>(world.intact_bond_count());
     s.steps = steps;
@@ -160,7 +175,12 @@ void print_sample(const Sample& s, double speedup, bool json) {
     const double pss = static_cast<double>(s.n) * static_cast<double>(s.steps) / s.seconds;
     const double per = static_cast<double>(s.n);
     if (json) {
-        std::printf("{\"n\": %lld, \"bonds\": %lld, \"pairs\": %lld, \"contacts\": %lld, \"threads\": %d, "
+        const BondParams defaults;
+        if (s.model == BondModel::flat_joint)
+            std::printf("{\"model\": \"flat_joint\", \"radial_elements\": %d, \"angular_elements\": %d, ",
+                        defaults.flat.radial_elements, defaults.flat.angular_elements);
+        else std::printf("{\"model\": \"%s\", ", bond_model_name(s.model));
+        std::printf("\"n\": %lld, \"bonds\": %lld, \"pairs\": %lld, \"contacts\": %lld, \"threads\": %d, "
                     "\"steps\": %lld, \"seconds\": %.4f, \"particle_steps_per_s\": %.4g, "
                     "\"neighbors_s\": %.4f, \"contacts_s\": %.4f, \"bonds_s\": %.4f, \"walls_s\": %.4f, "
                     "\"integrate_s\": %.4f, \"rebuilds\": %lld, \"bytes_per_particle\": %.1f, "
@@ -173,8 +193,8 @@ void print_sample(const Sample& s, double speedup, bool json) {
                     static_cast<double>(s.rss) / per, speedup);
         return;
     }
-    std::printf("%9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f\n",
-                static_cast<long long>(s.n), static_cast<long long>(s.bonds), s.threads,
+    std::printf("%-13s %9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f\n",
+                bond_model_name(s.model), static_cast<long long>(s.n), static_cast<long long>(s.bonds), s.threads,
                 static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                 s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
                 static_cast<double>(s.world_bytes) / per, static_cast<double>(s.rss) / per, speedup);
@@ -228,7 +248,7 @@ int main(int argc, char** argv) {
         if (!o.json) {
             std::printf("gradem-bench: bonded packing (radius ratio 3) between closing platens; "
                         "median of %d runs\n", o.repeat);
-            std::printf("%9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s\n", "N",
+            std::printf("%-13s %9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s\n", "model", "N",
                         "bonds", "thr", "steps", "seconds", "p-steps/s", "neigh", "contact",
                         "bonds", "walls", "integr", "B/p", "RSS/p", "speedup");
         }
@@ -236,15 +256,17 @@ int main(int argc, char** argv) {
             exp::QuickPackingSpec spec;
             spec.target_count = n;
             const exp::QuickPacking packing = exp::make_quick_packing(spec);
-            double base_seconds = 0.0;
-            for (int t : o.threads) {
-                std::vector<Sample> runs;
-                for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(packing, t, o.steps));
-                const Sample m = median_of(runs);
-                if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
-                const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
-                print_sample(m, speedup, o.json);
-                std::fflush(stdout);
+            for (BondModel model : o.models) {
+                double base_seconds = 0.0;
+                for (int t : o.threads) {
+                    std::vector<Sample> runs;
+                    for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(packing, t, o.steps, model));
+                    const Sample m = median_of(runs);
+                    if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
+                    const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
+                    print_sample(m, speedup, o.json);
+                    std::fflush(stdout);
+                }
             }
         }
     } catch (const std::exception& e) {
