@@ -29,8 +29,10 @@ namespace gradem {
 /// One element of the unit disc.
 struct FlatElementGeometry {
     double area = 0;                   ///< A_e
+    double inv_area = 0;               ///< 1/A_e
     double y = 0, z = 0;               ///< centroid in (t1, t2)
     double cyy = 0, czz = 0, cyz = 0;  ///< central ∫(y-y_e)² dA, ∫(z-z_e)² dA, ∫(y-y_e)(z-z_e) dA
+    double polar = 0;                  ///< cyy + czz, the central polar moment
     double r0 = 0, r1 = 0;             ///< radial bounds
     double a0 = 0, a1 = 0;             ///< angular bounds [rad]
     double reach = 0;                  ///< max distance from the centroid to a point of the element
@@ -103,6 +105,8 @@ inline std::vector<FlatElementGeometry> flat_joint_elements(std::int32_t nr, std
             g.cyy = syy - g.area * g.y * g.y;
             g.czz = szz - g.area * g.z * g.z;
             g.cyz = syz - g.area * g.y * g.z;
+            g.inv_area = 1.0 / g.area;
+            g.polar = g.cyy + g.czz;
             g.a0 = a0;
             g.a1 = a1;
             g.reach = detail::sector_reach(g, a0, a1);

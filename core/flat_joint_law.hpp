@@ -4,11 +4,12 @@
 // R̄ = λ̄ min(R_A, R_B) split into N_r x N_α annular-sector elements (flat_joint_geometry.hpp),
 // in a frame (t1, t2) installed once and carried with the pair (rotate_into_plane).
 //
-// Kinematics, per step, with the pair's increments (pair_kinematics.hpp): each element keeps
-// its centroid opening δ_e [m] (tension +) and shear force F_s,e on B [N]; the joint keeps its
-// accumulated bending rotation θ_b and twist θ_t [rad]:
-//     δ_e += dU_n + (dθ_b x x_e).n        F_s,e = rot(F_s,e) - k̄_s A_e (dU_s + dθ_t n x x_e)
-// so the gap over the interface is linear, g(x) = g_0 + δ_e + w.(x - x_e), w = n x θ_b.
+// Kinematics, per step, with the pair's increments (pair_kinematics.hpp): the joint keeps its
+// normal displacement since installation U_n [m] (opening +) and its bending rotation θ_b and
+// twist θ_t [rad], accumulated in the carried frame; each element keeps its shear force F_s,e on
+// B [N] as components in (t1, t2), so it turns with the frame:
+//     δ_e = U_n + w.x_e,  w = n x θ_b          F_s,e -= k̄_s A_e (dU_s + dθ_t n x x_e)
+// so the gap over the interface is linear, g(x) = g_0 + U_n + w.x.
 //
 // Bonded element (linear, tension and compression): F_n,e = k̄_n A_e δ_e (tension +), its own
 // bending moment n x (k̄_n C_e w) and twist moment -k̄_s (C_yy + C_zz) θ_t n (the linear stress
@@ -54,29 +55,23 @@ namespace gradem {
 /// Microstructural type of a joint (PFC fj_mtype order).
 enum class FlatJointType : std::uint8_t { bonded = 0, gapped = 1, slit = 2 };
 
-/// Side-state layout: a header, then kFlatElementSize doubles per element (bonded, δ_e, F_s,e).
+/// Side-state layout: a header, then kFlatElementSize doubles per element: bonded (1/0) and
+/// the element's shear force on B in the joint frame, (F_s,e.t1, F_s,e.t2) [N].
 namespace flat_side {
 inline constexpr std::size_t axis = 0;             ///< t1 (3)
 inline constexpr std::size_t bend = 3;             ///< θ_b (3) [rad]
 inline constexpr std::size_t twist = 6;            ///< θ_t [rad]
-inline constexpr std::size_t type = 7;             ///< FlatJointType as a double
-inline constexpr std::size_t initial_gap = 8;      ///< g_0 [m]
-inline constexpr std::size_t stiffness_scale = 9;  ///< (R_A+R_B)/(R_A+R_B+g) or 1 [-]
-inline constexpr std::size_t release_gap = 10;     ///< surface gap beyond which a separated joint is released [m]
+inline constexpr std::size_t normal = 7;           ///< U_n, normal displacement since installation [m], opening +
+inline constexpr std::size_t type = 8;             ///< FlatJointType as a double
+inline constexpr std::size_t initial_gap = 9;      ///< g_0 [m]
+inline constexpr std::size_t stiffness_scale = 10; ///< (R_A+R_B)/(R_A+R_B+g) or 1 [-]
+inline constexpr std::size_t release_gap = 11;     ///< surface gap beyond which a separated joint is released [m]
 }  // namespace flat_side
-inline constexpr std::size_t kFlatJointHeader = 11, kFlatElementSize = 5;
+inline constexpr std::size_t kFlatJointHeader = 12, kFlatElementSize = 3;
 
-struct FlatElementState {
-    bool bonded = true;
-    double opening = 0.0;  ///< δ_e [m], tension +
-    Vec3 shear_force;      ///< F_s,e on B [N]
-};
-
-inline FlatElementState flat_joint_element(std::span<const double> s, std::size_t e) {
-    const double* p = s.data() + kFlatJointHeader + e * kFlatElementSize;
-    return {p[0] != 0.0, p[1], {p[2], p[3], p[4]}};
+inline bool flat_joint_element_bonded(std::span<const double> s, std::size_t e) {
+    return s[kFlatJointHeader + e * kFlatElementSize] != 0.0;
 }
-inline Vec3 flat_joint_axis(std::span<const double> s) { return {s[0], s[1], s[2]}; }
 inline FlatJointType flat_joint_type(std::span<const double> s) {
     return static_cast<FlatJointType>(static_cast<int>(s[flat_side::type]));
 }
@@ -106,6 +101,7 @@ struct JointFrame {
     double wy = 0, wz = 0;  ///< w = n x θ_b in (t1, t2) [rad]
     double w_norm = 0;      ///< |w| [rad]
     double twist = 0;       ///< θ_t [rad]
+    double normal = 0;      ///< U_n [m], opening +
 };
 
 inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
@@ -116,9 +112,11 @@ inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
     f.t2 = cross(kin.normal, f.t1);
     const Vec3 bend_total = rotate_into_plane({side[bend], side[bend + 1], side[bend + 2]}, kin) + kin.bend_angle;
     f.twist = side[twist] + kin.twist_angle;
+    f.normal = side[normal] + kin.du_normal;
     side[axis] = f.t1.x, side[axis + 1] = f.t1.y, side[axis + 2] = f.t1.z;
     side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
     side[twist] = f.twist;
+    side[normal] = f.normal;
     // θ_b = a t1 + b t2  ->  w = n x θ_b = a t2 - b t1.
     const double a = dot(bend_total, f.t1), b = dot(bend_total, f.t2);
     f.wy = -b;
@@ -127,36 +125,32 @@ inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
     return f;
 }
 
-/// The normal part of one element: F_n (tension +) [N], the moment of its normal stresses
-/// about the contact point on B [N m], their strain energy [J], and whether it is open over
-/// its whole extent.
+/// The normal part of one element: F_n (tension +) [N], the first moment P = ∫ σ x dA of its
+/// normal stresses in the joint frame [N m] (their moment on B is n x P), their strain energy
+/// [J], and whether the element is open over its whole extent.
 struct NormalLoad {
-    double fn = 0;
-    Vec3 moment;
-    double energy = 0;
+    double fn = 0, p1 = 0, p2 = 0, energy = 0;
     bool open = false;
 };
 
 /// Linear stress field over the whole element (bonded, or unbonded and closed everywhere):
 /// F_n = k̄_n A g_e, P = k̄_n (A g_e x_e + C w), U = ½ k̄_n (A g_e² + wᵀ C w).
-inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& f, const Vec3& n, double kn,
-                                double R, double gap) {
-    const double R2 = R * R, R4 = R2 * R2, area = R2 * g.area;
+inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& f, double kn, double R, double gap) {
+    const double R2 = R * R, knR4 = kn * R2 * R2;
     const double cwy = g.cyy * f.wy + g.cyz * f.wz, cwz = g.cyz * f.wy + g.czz * f.wz;  // C w (unit disc)
     NormalLoad out;
-    out.fn = kn * area * gap;
-    const Vec3 x = (R * g.y) * f.t1 + (R * g.z) * f.t2;
-    const Vec3 p = out.fn * x + (kn * R4) * (cwy * f.t1 + cwz * f.t2);
-    out.moment = cross(n, p);
-    out.energy = 0.5 * (kn * area * gap * gap + kn * R4 * (f.wy * cwy + f.wz * cwz));
+    const double kna_gap = kn * R2 * g.area * gap;
+    out.fn = kna_gap;
+    out.p1 = kna_gap * R * g.y + knR4 * cwy;
+    out.p2 = kna_gap * R * g.z + knR4 * cwz;
+    out.energy = 0.5 * (kna_gap * gap + knR4 * (f.wy * cwy + f.wz * cwz));
     return out;
 }
 
 /// Unbonded element at centroid gap g_e = g_0 + δ_e: no tension, compressed part integrated.
-inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, const Vec3& n, double kn,
-                                  double R, double gap) {
+inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, double kn, double R, double gap) {
     const double spread = R * f.w_norm * g.reach;  // bounds |g(x) - g_e| over the element
-    if (gap + spread <= 0.0) return linear_normal(g, f, n, kn, R, gap);
+    if (gap + spread <= 0.0) return linear_normal(g, f, kn, R, gap);
     NormalLoad out;
     if (gap - spread >= 0.0) {
         out.open = true;
@@ -164,10 +158,11 @@ inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame
     }
     const double gamma = gap - R * (f.wy * g.y + f.wz * g.z);  // g at the disc centre
     const CompressedPart c = compressed_part(g, gamma, R * f.wy, R * f.wz);
-    const double R2 = R * R;
-    out.fn = kn * R2 * c.force;
-    out.moment = cross(n, (kn * R2 * R) * (c.py * f.t1 + c.pz * f.t2));
-    out.energy = 0.5 * kn * R2 * c.energy;
+    const double knR2 = kn * R * R;
+    out.fn = knR2 * c.force;
+    out.p1 = knR2 * R * c.py;
+    out.p2 = knR2 * R * c.pz;
+    out.energy = 0.5 * knR2 * c.energy;
     return out;
 }
 
@@ -217,53 +212,58 @@ struct FlatJointLaw {
         const Vec3& n = kin.normal;
         const JointFrame f = carry_frame(side, kin);
         const double scale = side[flat_side::stiffness_scale];
-        const BondStiffness k{k_touching.normal * scale, k_touching.shear * scale};
+        const double kn = k_touching.normal * scale, ks = k_touching.shear * scale;
         const double g0 = side[flat_side::initial_gap];
-        const double R = sec.radius, R2 = R * R, R4 = R2 * R2;
+        const double R = sec.radius, R2 = R * R, ksR4 = ks * R2 * R2;
+        const double inv_ks_r2 = 1.0 / (ks * R2);
+        const double du1 = dot(kin.du_shear, f.t1), du2 = dot(kin.du_shear, f.t2), dtwist = kin.twist_angle;
 
-        Vec3 force, moment;
-        double stored = 0.0;
+        double s1_sum = 0, s2_sum = 0, fn_sum = 0, p1_sum = 0, p2_sum = 0, twist_sum = 0, stored = 0;
         bool any_bonded = false, all_open = true;
         BondState last_mode = BondState::intact;
         for (std::size_t e = 0; e < c.elements.size(); ++e) {
             const FlatElementGeometry& g = c.elements[e];
             double* p = side + kFlatJointHeader + e * kFlatElementSize;
-            const Vec3 x = (R * g.y) * f.t1 + (R * g.z) * f.t2;  // centroid from the contact point
-            const double area = R2 * g.area;
-            const double ksa = k.shear * area;
-            const double opening = p[1] + kin.du_normal + dot(cross(kin.bend_angle, x), n);
-            const Vec3 du = kin.du_shear + kin.twist_angle * cross(n, x);
-            const Vec3 rotated = rotate_into_plane({p[2], p[3], p[4]}, kin);
-            Vec3 shear = rotated - ksa * du;
-            const double twist_energy = 0.5 * k.shear * R4 * (g.cyy + g.czz) * f.twist * f.twist;
+            const double xy = R * g.y, xz = R * g.z;  // centroid from the contact point, in (t1, t2)
+            const double ksa = ks * R2 * g.area, inv_ksa = inv_ks_r2 * g.inv_area;
+            const double opening = f.normal + f.wy * xy + f.wz * xz;  // δ_e [m]
+            // Elastic trial shear: F_s,e -= k̄_s A_e (dU_s + dθ_t n x x_e), in (t1, t2).
+            const double du_e1 = du1 - dtwist * xz, du_e2 = du2 + dtwist * xy;
+            const double old1 = p[1], old2 = p[2];
+            double s1 = old1 - ksa * du_e1, s2 = old2 - ksa * du_e2;
+            const double twist_energy = 0.5 * ksR4 * g.polar * f.twist * f.twist;
             bool bonded = p[0] != 0.0, broke_now = false;
             double energy_before = 0.0;
             NormalLoad load;
             if (bonded) {
-                load = linear_normal(g, f, n, k.normal, R, opening);
-                const BondState mode = element_failure(c, b, load.fn / area, norm(shear) / area);
+                load = linear_normal(g, f, kn, R, opening);
+                const double inv_a = g.inv_area / R2;
+                const BondState mode = element_failure(c, b, load.fn * inv_a, (s1 * s1 + s2 * s2) * inv_a * inv_a);
                 if (mode != BondState::intact) {
-                    energy_before = load.energy + 0.5 * norm2(shear) / ksa + twist_energy;
-                    breaks.push_back({mode, static_cast<std::int32_t>(e), x, load.fn / area, norm(shear) / area});
+                    const double tau = std::sqrt(s1 * s1 + s2 * s2) * inv_a;
+                    energy_before = load.energy + 0.5 * (s1 * s1 + s2 * s2) * inv_ksa + twist_energy;
+                    breaks.push_back({mode, static_cast<std::int32_t>(e), xy * f.t1 + xz * f.t2, load.fn * inv_a, tau});
                     bonded = false;
                     broke_now = true;
                     last_mode = mode;
                 }
             }
             if (!bonded) {
-                load = unbonded_normal(g, f, n, k.normal, R, g0 + opening);
-                shear = frictional_cap(c, shear, rotated, du, load.fn, ksa, broke_now, r.slip);
+                load = unbonded_normal(g, f, kn, R, g0 + opening);
+                frictional_cap(c, s1, s2, old1, old2, du_e1, du_e2, load.fn, inv_ksa, !broke_now, r.slip);
             }
-            const double energy = load.energy + 0.5 * norm2(shear) / ksa + (bonded ? twist_energy : 0.0);
+            const double energy = load.energy + 0.5 * (s1 * s1 + s2 * s2) * inv_ksa + (bonded ? twist_energy : 0.0);
             if (broke_now) r.released += energy_before - energy;
             stored += energy;
             p[0] = bonded ? 1.0 : 0.0;
-            p[1] = opening;
-            p[2] = shear.x, p[3] = shear.y, p[4] = shear.z;
-
-            force += shear - load.fn * n;
-            moment += cross(x, shear) + load.moment;
-            if (bonded) moment -= (k.shear * R4 * (g.cyy + g.czz) * f.twist) * n;
+            p[1] = s1;
+            p[2] = s2;
+            s1_sum += s1;
+            s2_sum += s2;
+            fn_sum += load.fn;
+            p1_sum += load.p1;
+            p2_sum += load.p2;
+            twist_sum += xy * s2 - xz * s1 - (bonded ? ksR4 * g.polar * f.twist : 0.0);
             any_bonded = any_bonded || bonded;
             all_open = all_open && load.open;
         }
@@ -282,10 +282,13 @@ struct FlatJointLaw {
         }
         if (!c.track) r.released = 0.0;
         if (c.track) r.stored = stored;
-        b.normal_force = -dot(force, n);
-        b.shear_force = force + b.normal_force * n;
-        b.twist_moment = dot(moment, n);
-        b.bend_moment = moment - b.twist_moment * n;
+        // Resultant on B: F = Σ F_s,e - Σ F_n,e n;  M = Σ x_e x F_s,e + n x Σ P_e + twist of bonded elements.
+        const Vec3 force = s1_sum * f.t1 + s2_sum * f.t2 - fn_sum * n;
+        const Vec3 moment = twist_sum * n + p1_sum * f.t2 - p2_sum * f.t1;
+        b.normal_force = fn_sum;
+        b.shear_force = s1_sum * f.t1 + s2_sum * f.t2;
+        b.twist_moment = twist_sum;
+        b.bend_moment = p1_sum * f.t2 - p2_sum * f.t1;
         r.force_j = force;
         r.moment_j = moment;
         return r;
@@ -297,25 +300,29 @@ struct FlatJointLaw {
     }
 
 private:
-    /// Which way a bonded element fails at mean stresses σ (tension +) and τ [Pa], if it does.
-    static BondState element_failure(const Context& c, const ParallelBond& b, double sigma, double tau) {
+    /// Which way a bonded element fails at mean stresses σ (tension +) and τ² [Pa²], if it does:
+    /// tension if σ >= σ̄_c, shear if τ >= c̄ - σ tan φ̄ (σ < σ̄_c here).
+    static BondState element_failure(const Context& c, const ParallelBond& b, double sigma, double tau2) {
         if (sigma >= b.tensile_strength) return BondState::broken_tension;
-        const double capped = sigma < b.tensile_strength ? sigma : b.tensile_strength;
-        if (tau >= b.cohesion - capped * c.tan_phi) return BondState::broken_shear;
+        const double strength = b.cohesion - sigma * c.tan_phi;
+        if (strength <= 0.0 || tau2 >= strength * strength) return BondState::broken_shear;
         return BondState::intact;
     }
 
-    /// Coulomb cap |F_s| <= μ max(-F_n, 0) of an unbonded element; adds the slip energy of the
-    /// step (trapezoidal work of the capped force on the slip increment) unless it broke now.
-    static Vec3 frictional_cap(const Context& c, const Vec3& shear, const Vec3& rotated, const Vec3& du,
-                               double fn, double ksa, bool broke_now, double& slip) {
+    /// Coulomb cap |F_s| <= μ max(-F_n, 0) of an unbonded element, in (t1, t2); adds the slip
+    /// energy of the step (trapezoidal work of the capped force on the slip increment) if asked.
+    static void frictional_cap(const Context& c, double& s1, double& s2, double old1, double old2, double du1,
+                               double du2, double fn, double inv_ksa, bool count_slip, double& slip) {
         const double limit = fn < 0.0 ? -c.friction * fn : 0.0;
-        const double s2 = norm2(shear);
-        if (!(s2 > limit * limit)) return shear;
-        const Vec3 capped = (s2 > 0.0 ? limit / std::sqrt(s2) : 0.0) * shear;
-        if (!broke_now && c.track)
-            slip += -0.5 * dot(rotated + capped, du) - 0.5 * (norm2(capped) - norm2(rotated)) / ksa;
-        return capped;
+        const double m2 = s1 * s1 + s2 * s2;
+        if (!(m2 > limit * limit)) return;
+        const double f = m2 > 0.0 ? limit / std::sqrt(m2) : 0.0;
+        const double c1 = f * s1, c2 = f * s2;
+        if (count_slip && c.track)
+            slip += -0.5 * ((old1 + c1) * du1 + (old2 + c2) * du2) -
+                    0.5 * (c1 * c1 + c2 * c2 - old1 * old1 - old2 * old2) * inv_ksa;
+        s1 = c1;
+        s2 = c2;
     }
 };
 
