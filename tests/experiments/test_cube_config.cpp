@@ -317,10 +317,19 @@ TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[
                  {"angular_elements = -3", "key 'material.angular_elements' = -3 violates in [1, 64]"},
                  {"angular_elements = 10000000000", "key 'material.angular_elements' = 10000000000 violates in [1, 64]"},
                  {"radial_elements = 1.5", "key 'material.radial_elements' = 1.5: expected an integer"},
-                 {"residual_friction = -0.2", "key 'material.residual_friction' = -0.2 violates >= 0"}}) {
+                 {"residual_friction = -0.2", "key 'material.residual_friction' = -0.2 violates >= 0"},
+                 {"bonded_fraction = 1.2", "key 'material.bonded_fraction' = 1.2 violates in [0, 1]"},
+                 {"gapped_fraction = -0.1", "key 'material.gapped_fraction' = -0.1 violates in [0, 1]"},
+                 {"gap_ratio = -0.01", "key 'material.gap_ratio' = -0.01 violates >= 0"},
+                 {"friction_angle_deg = 90", "key 'material.friction_angle_deg' = 90 violates in [0, 90)"},
+                 {"stiffness_over_gap = 1", "key 'material.stiffness_over_gap' = 1: expected true or false"}}) {
             write_file(file, config_with("material", "model = \"flat_joint\"\n" + line));
             require_rejected(file, 5, {expected});
         }
+    }
+    SECTION("joint-type fractions that sum over 1 name the key and the rule") {
+        write_file(file, config_with("material", "model = \"flat_joint\"\nbonded_fraction = 0.7\ngapped_fraction = 0.5"));
+        require_rejected(file, 6, {"material.gapped_fraction", "the fractions sum to at most 1"});
     }
 }
 
