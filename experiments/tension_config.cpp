@@ -1,5 +1,6 @@
 #include "experiments/tension_config.hpp"
 
+#include <algorithm>
 #include <string>
 #include <toml++/toml.h>
 
@@ -35,14 +36,22 @@ TensionConfig load_tension_config(const CubeConfig& config) {
         if (why->rfind("TensionTestSpec::grip_depth_fraction", 0) != 0) throw common::InputError(ctx.file, 0, *why);
         reject(ctx, "tension.grip_depth_fraction", *why);
     }
-    if (!(t.auto_peak_strain > 0.0 && t.auto_peak_strain < 0.01))
-        reject(ctx, "tension.auto_peak_strain", "violates in (0, 0.01)");
+    if (ctx.keys["tension.auto_peak_strain"].line > 0 && !(t.auto_peak_strain > 0.0 && t.auto_peak_strain < 0.01))
+        reject(ctx, "tension.auto_peak_strain", "in (0, 0.01)");
     return t;
 }
 
+double expected_tensile_peak_strain(const MaterialParams& material) {
+    const double strain = kTensilePeakStrainPerBondStrain * material.bond.tensile_strength_mean /
+                          material.bond.effective_modulus;
+    return std::clamp(strain, 1.0e-5, 1.0e-2);
+}
+
 double tension_strain_rate(const CubeConfig& config, const TensionConfig& tension, const Packing& packing) {
-    return config.auto_strain_rate ? quasi_static_strain_rate(packing, config.material, tension.auto_peak_strain)
-                                   : config.test.loading.strain_rate;
+    if (!config.auto_strain_rate) return config.test.loading.strain_rate;
+    const double peak = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain
+                                                       : expected_tensile_peak_strain(config.material);
+    return quasi_static_strain_rate(packing, config.material, peak);
 }
 
 }  // namespace gradem::exp

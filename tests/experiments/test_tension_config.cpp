@@ -94,6 +94,20 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
         CHECK(rate / strain_rate_for(automatic, k) == Approx(5e-4 / 0.003));  // compression expects a peak at 0.003
         CHECK(tension_strain_rate(with, t, k) == with.test.loading.strain_rate);
     }
+    SECTION("without auto_peak_strain the expected tensile peak strain comes from the material") {
+        Packing k;
+        k.box_hi = {3e-3, 3e-3, 3e-3};
+        k.density = 2640.0;
+        CubeConfig automatic = plain;
+        automatic.auto_strain_rate = true;
+        automatic.material.bond.tensile_strength_mean = 16.0e6;
+        automatic.material.bond.effective_modulus = 8.0e9;
+        const double expected = 0.5 * 16.0e6 / 8.0e9;  // 0.5 σ̄_c/Ē = 1e-3
+        CHECK(expected_tensile_peak_strain(automatic.material) == Approx(expected));
+        CHECK(tension_strain_rate(automatic, defaults, k) == Approx(quasi_static_strain_rate(k, automatic.material, expected)));
+        automatic.material.bond.tensile_strength_mean *= 2.0;  // stronger bonds: a later peak, a faster pull
+        CHECK(tension_strain_rate(automatic, defaults, k) == Approx(2.0 * quasi_static_strain_rate(k, automatic.material, expected)));
+    }
 }
 
 TEST_CASE("bad [tension] tables are rejected with file, line, key and rule", "[tension_config]") {
