@@ -45,7 +45,7 @@ struct PairState {
 /// Kinematics of pair (A, B) for a step of length dt [s].
 inline PairKinematics pair_kinematics(const PairState& s, double dt) {
     // Locals first, one aggregate at the end: no zero-fill of the 200-byte result before the
-    // fields are written (the compiler emitted a rep stos for it; issue 10).
+    // fields are written (a zero-fill compiles to a rep stos on the hot path).
     const Vec3 d = s.xb - s.xa;
     const double dist = norm(d);
     // Reciprocals taken unconditionally and the zero-length case selected after (the same bits

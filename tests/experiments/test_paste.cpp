@@ -1,5 +1,5 @@
-// Explicit paste (issue 11): the mix design's volume fractions against hand computation and
-// Powers' numbers (models.md §5); bad mixes name the key; a paste fill of a sand lattice
+// Explicit paste: the mix design's volume fractions against hand computation and
+// Powers' numbers (docs/genesis.md "Mix design"); bad mixes name the key; a paste fill of a sand lattice
 // matches the mix design's fractions within a stated tolerance, leaves no paste particle
 // overlapping a sand grain beyond the tolerance, and refuses a size that would not fit memory.
 #include <catch2/catch.hpp>

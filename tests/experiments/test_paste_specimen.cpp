@@ -1,4 +1,4 @@
-// Explicit-paste specimens end to end (issue 11): the config keys ([specimen] representation,
+// Explicit-paste specimens end to end: the config keys ([specimen] representation,
 // [mix], [paste]) with their errors naming file, line and key; the paste cache keyed on the
 // paste settings; bond families in the bonded cube specimen (sand-sand frictional, ITZ bonds
 // scaled, paste-paste bonds = [material]); the cube test of a paste specimen bitwise the same
