@@ -1,6 +1,6 @@
 #pragma once
 // Geometry and relative motion of a particle pair over one step, shared by the linear-contact
-// and parallel-bond kernels. Conventions (physics.md §0): the unit normal n points from A to B;
+// and parallel-bond kernels. Conventions (docs/model.md "Conventions"): the unit normal n points from A to B;
 // gap g = |x_B - x_A| - R_A - R_B (g < 0 is overlap); the contact point sits in the middle of
 // the gap, x_C = x_A + (R_A + g/2) n. The relative displacement increment of B with respect to
 // A at x_C over the step is

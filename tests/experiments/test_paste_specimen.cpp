@@ -204,7 +204,7 @@ TEST_CASE("paste specimen: the cube test is bitwise the same for 1, 2 and 3 thre
 }
 
 TEST_CASE("paste specimen: the auto loading rate is quasi-static by the particles' own masses", "[paste]") {
-    // Criterion (physics.md §6 (i)): time to the expected peak ε_p/ε̇ ≥ 200 transits L/c, c =
+    // Criterion (docs/virtual_tests.md "Loading rate"): time to the expected peak ε_p/ε̇ ≥ 200 transits L/c, c =
     // sqrt(E*/ρ) with ρ = Σm/ΣV of the bonded World's particles (paste particles weigh
     // paste density / solid fraction: the sand density would give a rate too fast).
     const test::TempDir dir("paste-rate");
