@@ -97,7 +97,7 @@ int run_compress(const std::vector<std::string>& args) {
     bool cached = false;
     if (!std::filesystem::exists(exp::packing_cache_path(config.cache_dir, exp::packing_key(curve, config.specimen))))
         std::fprintf(stderr, "compress: generating the packing (genesis) ...\n");
-    std::optional<exp::PasteReport> paste;  // explicit paste (issue 11): the fill's report
+    std::optional<exp::PasteReport> paste;  // explicit paste: the fill's report
     if (config.specimen.paste) paste.emplace();
     const exp::Packing packing =
         paste ? exp::load_or_generate_paste(curve, config.specimen, config.cache_dir, &cached, &*paste)

@@ -1,6 +1,7 @@
 // `gradem quick-cube`: a bonded cube of a few thousand spheres compressed between platens to
-// past its peak, with a stress-strain summary. A smoke run of the whole engine until specimen
-// genesis from a measured gradation (issue 4) provides real specimens.
+// past its peak, with a stress-strain summary. A smoke run of the whole engine on a quick
+// lattice packing (experiments/quick_packing.hpp); specimens of a measured gradation are
+// `gradem compress`'s (docs/genesis.md).
 #include <chrono>
 #include <cstdio>
 #include <iostream>

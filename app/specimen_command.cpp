@@ -66,7 +66,7 @@ int run_specimen(const std::vector<std::string>& args) {
     const SpecimenOptions o = parse_specimen(args);
     const exp::CubeConfig config = exp::load_cube_config(o.config);
     const lab::GradationCurve curve = exp::load_gradation(config);
-    if (config.specimen.paste) return run_paste_specimen(config, curve, o.config, o.show);  // explicit paste (issue 11)
+    if (config.specimen.paste) return run_paste_specimen(config, curve, o.config, o.show);  // explicit paste
     const std::uint64_t key = exp::packing_key(curve, config.specimen);
     const std::filesystem::path path = exp::packing_cache_path(config.cache_dir, key);
     exp::Packing packing;

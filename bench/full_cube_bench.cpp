@@ -1,4 +1,4 @@
-// The full-size cube (issue 10 item 5): the study's 50 mm cube with its gradation cut at the
+// The full-size cube: the study's 50 mm cube with its gradation cut at the
 // No. 100 sieve. N is sampled exactly (about 1e7 grains at 0.149 mm, 1.3e6 at the No. 50 sieve,
 // 0.3 mm); a World of 1e7 spheres does not fit the 2 GiB asked (~1 kB per sphere), so the
 // cost is measured on `timed` spheres and scaled linearly to N (the cost per particle-step

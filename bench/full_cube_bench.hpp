@@ -1,5 +1,5 @@
 #pragma once
-// gradem-bench --full-cube: what one full-size cube test costs (issue 10 item 5); see
+// gradem-bench --full-cube: what one full-size cube test costs; see
 // bench/full_cube_bench.cpp.
 #include <cstdint>
 

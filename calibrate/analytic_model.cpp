@@ -7,12 +7,12 @@
 // so a joint fit of two sands pins down four parameters. The other bond laws add ductility to
 // the shape index D (their parameters are dimensionless, so the homogeneity is kept):
 //   soft bond    D += h ln(1 + (1 − γ²)/ζ)   (the bond's fracture energy over its elastic
-//                                              energy at σ̄c, models.md §1: 1 + (1 − γ²)/ζ)
+//                                              energy at σ̄c, core/soft_bond_law.hpp: 1 + (1 − γ²)/ζ)
 //   flat joint   D += h μ_r / 2              (frictional residual of broken elements)
 // with a per-sand h. The direct-tension test (CubeTest::tension) is linear to its peak:
 //   E_t = E (as in compression),  σt = σ̄c t_s (1 − r_s v),  εt = σt / E_t
 // with a per-sand t_s of 0.40-0.45, so σc/σt = p_s ρ^q_s / t_s ≈ 3 (as low as parallel-bond
-// specimens give, models.md). Cost: every run reports 1000 particles, 1 step and a nominal
+// specimens give, Potyondy & Cundall 2004). Cost: every run reports 1000 particles, 1 step and a nominal
 // wall time of kNominalWallSeconds (deterministic, so answers stay bitwise comparable).
 // It is exactly homogeneous (E ∝ E*, σ ∝ σ̄c, ε ∝ σ̄c/E*) like the DEM model. Seed noise: every output is multiplied by
 // 1 + noise·z with z a deterministic pseudo-normal draw from (sand, seed, output).

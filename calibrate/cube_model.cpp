@@ -40,8 +40,9 @@ std::string material_key(const exp::MaterialParams& m) {
     // Another bond law than the parallel bond: its name and every table row of its own, so a
     // parallel-bond run is never served for another model (parallel-bond keys are unchanged).
     std::string key = buf;
-    // Explicit paste: the interfacial-zone factors, calibratable since session 7; appended only
-    // when they differ from 1, so the runs of earlier paste ledgers (factors 1) keep their keys.
+    // Explicit paste: the interfacial-zone factors (calibration parameters); appended only when
+    // they differ from 1, so a paste run with factors 1 has the key it has without them (paste
+    // ledgers written before the factors joined the key stay valid).
     const auto& f = m.families;
     if (f.itz_strength_factor != 1.0 || f.itz_modulus_factor != 1.0) {
         std::snprintf(buf, sizeof buf, " itz_s=%a itz_m=%a", f.itz_strength_factor, f.itz_modulus_factor);

@@ -138,14 +138,14 @@ public:
 
     std::string fingerprint() const override {
         std::ostringstream f;
-        // v2: one dt per step (issue 9) changed every run's arithmetic; bump whenever the engine's
-        // results change on purpose, so the ledger never serves a run of another engine.
+        // The engine's version (v2: one time step per step, world_step.cpp); bump whenever the
+        // engine's results change on purpose, so the ledger never serves a run of another engine.
         f << "dem cube model v2; genesis v" << exp::kGenesisAlgorithmVersion << "; format v" << exp::kPackingFormatVersion;
         for (const auto& curve : curves_) {
             exp::SpecimenSpec spec = base_.specimen;
             spec.seed = 0;  // seeds are part of each run key
             f << "; packing " << std::hex << exp::packing_key(curve, spec) << std::dec;
-            if (spec.paste)  // explicit paste (issue 11): the paste specimen and the bond families
+            if (spec.paste)  // explicit paste: the paste specimen and the bond families
                 f << "; paste " << std::hex << exp::paste_packing_key(exp::packing_key(curve, spec), *spec.paste) << std::dec
                   << " itz " << std::hexfloat << base_.material.families.itz_strength_factor << " "
                   << base_.material.families.itz_modulus_factor << std::defaultfloat << " sand-sand "

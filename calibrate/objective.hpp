@@ -1,5 +1,5 @@
 #pragma once
-// Residuals, the objective, and the model's homogeneity (calibration.md §1):
+// Residuals, the objective, and the model's homogeneity (docs/calibration.md "Objective and weights"):
 //   r(sand, q) = w_q (y_sim / y_lab − 1)         relative error, weighted; a failed evaluation
 //                                                gets r = w_q · penalty for every target
 //   J          = Σ r²

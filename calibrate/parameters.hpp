@@ -13,7 +13,7 @@
 // friction_angle_deg, bond_gap_um, bond_gap_fraction, tensile_strength_mpa (c̄ keeps its ratio),
 // cohesion_ratio, cohesion_mpa, strength_cv, and each bond model's own (softening_factor,
 // cut_fraction; radial_elements, angular_elements (fixed only), residual_friction).
-// "Scale" parameters are those the model's homogeneity (calibration.md §1) acts on: multiplying
+// "Scale" parameters are those the model's homogeneity (docs/calibration.md "Homogeneity") acts on: multiplying
 // all moduli by a scales E by a; multiplying all strengths by b scales the peak by b.
 #include <optional>
 #include <string>

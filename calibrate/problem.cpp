@@ -85,7 +85,7 @@ void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
 
 // [calibration] paste_diameter_mm: one coarse-grained paste size for every run, replacing the
 // base config's paste.min/max_diameter_mm (explicit-paste bases only; the same base serves
-// calibrations at several paste sizes, issue 11).
+// calibrations at several paste sizes).
 void apply_paste_diameter(Context& ctx, double diameter, exp::CubeConfig& base) {
     const int line = ctx.keys["calibration.paste_diameter_mm"].line;
     if (!base.specimen.paste)

@@ -1,4 +1,4 @@
-// The scaling-law path (calibration.md §1) and the solver dispatch.
+// The scaling-law path (docs/calibration.md "The scaling solver") and the solver dispatch.
 //   1. run the start point x0;
 //   2. rescale E* by α and the strengths by β in closed form (objective.hpp) -> x1, predict
 //      its outputs, run it, and compare: the homogeneity holds if E and peak are predicted

@@ -138,7 +138,7 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
     }
     cp.values = ParameterSpace(cp.problem.parameters, cp.problem.base.material).start();
     cp.bond_model = bond_model_name(cp.problem.base.material.bond.model);
-    if (cp.problem.base.representation != "parallel_bonds")  // the paste as particles (issue 11)
+    if (cp.problem.base.representation != "parallel_bonds")  // the paste as particles
         cp.bond_model += ", " + cp.problem.base.representation;
     return cp;
 }

@@ -219,9 +219,9 @@ std::string pct_text(double v) { return std::isfinite(v) ? fmt_num(100 * v, 3) +
 
 }  // namespace
 
-// model_form: the calibrations of several bond models (or representations) side by side, the
-// table of issue 9: per model and sand the error against the lab on the three targets (met
-// within target_tolerance.hpp's tolerances or not), the shape index D = E ε_peak / σ_peak,
+// model_form: the calibrations of several bond models (or representations) side by side: per
+// model and sand the error against the lab on the three targets (met within
+// target_tolerance.hpp's tolerances or not), the shape index D = E ε_peak / σ_peak,
 // σc/σt from the direct-tension test at the calibrated parameters (the calibration's sands,
 // seeds and base cube; through the study's ledger, so a rerun repeats no test), and the cost
 // per cube test from the calibration's ledger.

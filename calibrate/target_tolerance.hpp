@@ -1,7 +1,7 @@
 #pragma once
 // When a calibrated target counts as met: |simulated seed mean / lab mean − 1| within the
-// quantity's tolerance. The numbers are issue 9's target ("modulus and peak within 5 %,
-// strain at peak within 10 %"): the strain at peak scatters more in the lab (its coefficient
+// quantity's tolerance: modulus and peak within 5 %, strain at peak within 10 % (the strain
+// at peak scatters more in the lab (its coefficient
 // of variation is about twice the peak's) and is the quantity the bond models' shape sets.
 // The one place the calibration summary (md, json, html) and the model_form study read them.
 #include <cmath>

@@ -91,7 +91,7 @@ std::optional<Scales> scales_to_best(const ParameterSpace& space, const std::vec
     return Scales{alpha.value_or(1.0), beta.value_or(1.0)};
 }
 
-/// With the homogeneity verified (E ∝ α, peak ∝ β, strain ∝ β/α, calibration.md §1), every
+/// With the homogeneity verified (E ∝ α, peak ∝ β, strain ∝ β/α, docs/calibration.md "Homogeneity"), every
 /// evaluation of the scaling path's shape search is, after rescaling, a point on its shape
 /// column through the best point. The one whose step is nearest the finite-difference step h,
 /// within [h/2, kMaxSecantSteps·h], serves as the difference point for free: a secant over up

@@ -1,5 +1,6 @@
 #pragma once
-// Uncertainty and identifiability at the optimum (calibration.md §7). The Jacobian of the
+// Uncertainty and identifiability at the optimum (docs/calibration.md "Uncertainty and
+// identifiability"). The Jacobian of the
 // lab-normalised residuals r_i = (y_i − y_lab,i) / s_i, s_i = sqrt(s_lab² + s_sim²/n), with
 // respect to the natural coordinates z (ln v for log parameters, v for linear ones):
 //   - scale columns in closed form when the homogeneity was verified (∂ln E/∂ln E* = 1,

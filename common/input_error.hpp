@@ -1,5 +1,5 @@
 #pragma once
-// Errors at the input boundary (style.md §8.5): every problem with a user's file (lab export,
+// Errors at the input boundary: every problem with a user's file (lab export,
 // sieve table, config, study) is an InputError whose message starts with "file:line: " (or
 // "file: " when no line applies), so the user can jump straight to the offending cell or key.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Bond parameters per pair of particle families (issue 11: explicit paste). Particles carry a
+// Bond parameters per pair of particle families (explicit paste). Particles carry a
 // family tag (ParticleSet::family: 0 sand, 1 paste in experiments/); entry (a, b) = (b, a) of
 // the table holds the parameters of bonds between a family-a and a family-b particle, or none:
 // such pairs get no bond (frictional contact only). Every entry uses the same bond model and

@@ -1,5 +1,5 @@
 #pragma once
-// THE table of bond laws (issue 9): BondModel -> kernel. Adding a law = one kernel header (the
+// THE table of bond laws: BondModel -> kernel. Adding a law = one kernel header (the
 // interface is described in bond_law.hpp), one parameter struct in params.hpp, one row here.
 // The World calls visit_bond_law once per phase, so each law's loop is compiled with its kernel
 // inlined (no per-bond dispatch in the hot loop).

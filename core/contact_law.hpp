@@ -1,5 +1,5 @@
 #pragma once
-// Linear contact with Coulomb slip: the "linear" part of PFC's linearpbond (physics.md §1),
+// Linear contact with Coulomb slip: the "linear" part of PFC's linearpbond (docs/model.md "Linear contact"),
 // Cundall & Strack (1979). Normal force in absolute mode, compression positive:
 //     F_n = k_n max(0, -g);
 // shear force incremental, stored as the force on B and carried into the current contact plane:

@@ -1,6 +1,6 @@
 #pragma once
 // Geometry and relative motion of a particle pair over one step, shared by the linear-contact
-// and parallel-bond kernels. Conventions (physics.md §0): the unit normal n points from A to B;
+// and parallel-bond kernels. Conventions (docs/model.md "Conventions"): the unit normal n points from A to B;
 // gap g = |x_B - x_A| - R_A - R_B (g < 0 is overlap); the contact point sits in the middle of
 // the gap, x_C = x_A + (R_A + g/2) n. The relative displacement increment of B with respect to
 // A at x_C over the step is
@@ -45,7 +45,7 @@ struct PairState {
 /// Kinematics of pair (A, B) for a step of length dt [s].
 inline PairKinematics pair_kinematics(const PairState& s, double dt) {
     // Locals first, one aggregate at the end: no zero-fill of the 200-byte result before the
-    // fields are written (the compiler emitted a rep stos for it; issue 10).
+    // fields are written (a zero-fill compiles to a rep stos on the hot path).
     const Vec3 d = s.xb - s.xa;
     const double dist = norm(d);
     // Reciprocals taken unconditionally and the zero-length case selected after (the same bits

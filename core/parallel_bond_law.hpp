@@ -1,5 +1,5 @@
 #pragma once
-// Parallel bond (Potyondy & Cundall 2004, §2.2; PFC linearpbond; physics.md §2). Elastic disc
+// Parallel bond (Potyondy & Cundall 2004, §2.2; PFC linearpbond; docs/bond_laws.md). Elastic disc
 // updated incrementally (update_bond_forces in bond_law.hpp); peak periphery stresses
 //     σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī,   τ̄ = |F̄_s|/Ā + β̄ |M̄_t| R̄/J̄.
 // Failure: σ̄ >= σ̄_c -> tension; else τ̄ >= τ̄_c = c̄ - σ tan φ̄ with σ = min(F̄_n/Ā, σ̄_c)

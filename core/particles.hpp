@@ -26,7 +26,7 @@ struct ParticleSet {
     std::vector<double> mass;    ///< [kg]
     std::vector<double> inertia; ///< moment of inertia, 2/5 m R^2 for a solid sphere [kg m^2]
     std::vector<std::uint8_t> flags;  ///< ParticleFlag bits
-    std::vector<std::uint8_t> family; ///< bond family (issue 11: 0 sand, 1 paste); 0 by default
+    std::vector<std::uint8_t> family; ///< bond family (explicit paste: 0 sand, 1 paste); 0 by default
 
     [[nodiscard]] std::size_t size() const { return radius.size(); }
 

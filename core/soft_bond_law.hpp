@@ -1,8 +1,8 @@
 #pragma once
-// Soft bond (PFC softbond semantics; models.md §1 "Law to implement"). The bond disc is the
+// Soft bond (PFC softbond semantics; docs/bond_laws.md "Soft bond"). The bond disc is the
 // parallel bond's (R̄, Ā, Ī, J̄, k̄_n, k̄_s; bond_law.hpp); instead of breaking at its tensile
 // strength it softens:
-//   * effective (undamaged) F̄_n, F̄_s, M̄_t, M̄_b follow the parallel-bond update (physics.md §2.3);
+//   * effective (undamaged) F̄_n, F̄_s, M̄_t, M̄_b follow the parallel-bond update (docs/bond_laws.md);
 //   * periphery opening, bending included:  δ = σ̄/k̄_n,  σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī  [m];
 //     δ_max = max over the history of δ;  δ_c = σ̄_c/k̄_n;
 //   * softening branch (slope -ζ k̄_n):  σ_s(δ) = σ̄_c - ζ k̄_n (δ - δ_c)  for δ > δ_c;
@@ -14,7 +14,7 @@
 //     capped at σ̄_c (effective-stress criterion: with ω = 0 it is the parallel bond's).
 // Energy: stored = (1-ω) x (undamaged energy of the damageable parts: all but a compressive F̄_n)
 // + ½ F̄_n²/(k̄_n Ā) if F̄_n < 0; a step that raises ω by Δω dissipates Δω x ½ k u_old u_new
-// summed over the damaged parts (models.md §2, ΔD = ½ k δ² Δω, in the form that matches the
+// summed over the damaged parts (ΔD = ½ k δ² Δω, in the form that matches the
 // leap-frog's trapezoidal work) -> EnergyLedger::bond_damage; the energy still stored at the
 // break is released -> EnergyLedger::bond_break. Pure tension to break: the total is
 //     G Ā,  G = σ̄_c²/(2 k̄_n) [1 + (1-γ²)/ζ]  [J/m²].

@@ -2,7 +2,7 @@
 // Rigid planar walls (platens). A wall is the plane {x : n.(x - p) = 0}; particles live on the
 // side n.(x - p) > 0. It moves with a prescribed velocity and reports the reaction: the sum of
 // the forces the particles exert on it. Wall-particle contacts use the linear law with the
-// ball-facet stiffness k_n = pi R E*_w (physics.md §1.1), the wall playing particle A.
+// ball-facet stiffness k_n = pi R E*_w (docs/model.md "Linear contact"), the wall playing particle A.
 #include <cstdint>
 #include <string>
 

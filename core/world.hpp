@@ -42,7 +42,7 @@ public:
     /// gap`), at zero force in the current geometry, replacing any existing bonds. Returns the
     /// bond count.
     std::size_t install_bonds(const BondParams& params, double max_gap);
-    /// The same with parameters per pair of particle families (ParticleSet::family; issue 11):
+    /// The same with parameters per pair of particle families (ParticleSet::family; explicit paste):
     /// a pair whose table entry is empty gets no bond. Throws for an invalid table or a particle
     /// family outside it.
     std::size_t install_bonds(const BondFamilyTable& table, double max_gap);

@@ -1,4 +1,5 @@
-// Phase 5: gather and leap-frog integration with Cundall local damping (physics.md §5):
+// Phase 5: gather and leap-frog integration with Cundall local damping (docs/model.md
+// "Time integration"):
 //     v(t+½) = v(t-½) + dt (F(t) + F_d(t)) / m,   x(t+dt) = x(t) + dt v(t+½),
 //     w(t+½) = w(t-½) + dt (M(t) + M_d(t)) / I    (spheres: no gyroscopic term),
 // plus wall motion, wall reactions and the divergence checks.
@@ -17,7 +18,7 @@ namespace {
 inline double sign(double v) { return static_cast<double>(v > 0.0) - static_cast<double>(v < 0.0); }
 
 // Cundall local non-viscous damping, component-wise: F_d,k = -alpha |F_k| sign(v_k)
-// (physics.md §5.3; YADE NewtonIntegrator::cundallDamp1st), v the latest half-step velocity.
+// (Cundall's local damping; YADE NewtonIntegrator::cundallDamp1st), v the latest half-step velocity.
 inline Vec3 local_damping(const Vec3& f, const Vec3& v, double alpha) {
     return {-alpha * std::fabs(f.x) * sign(v.x), -alpha * std::fabs(f.y) * sign(v.y),
             -alpha * std::fabs(f.z) * sign(v.z)};

@@ -1,4 +1,4 @@
-// Phases 2 and 3 in one pass over the Verlet pairs, for the parallel bond (issue 10). With the
+// Phases 2 and 3 in one pass over the Verlet pairs, for the parallel bond. With the
 // parallel bond the linear contact acts beside the bond (PFC linearpbond), so a bonded pair
 // that overlaps needs the same pair kinematics twice: once in the contact phase, once in the
 // bond phase. In a compression test about 55 % of the bonded pairs overlap, and almost every
@@ -216,7 +216,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 }
                 // the streams of the pair a batch ahead (bond, bond constants, stored energy,
                 // output slot, and the pair record further on): ~10 concurrent streams at
-                // N = 2e5 outrun the hardware prefetcher (issue 10; only out of cache: stream_prefetch_above_bytes)
+                // N = 2e5 outrun the hardware prefetcher (only out of cache: stream_prefetch_above_bytes)
                 if constexpr (decltype(prefetch)::value) if (k + kStreamAhead < end) {
                     const auto ka = static_cast<std::size_t>(k + kStreamAhead);
                     __builtin_prefetch(&pair_out_[ka], 1);

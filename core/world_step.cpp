@@ -55,7 +55,7 @@ RunStatus World::step() {
         forces_current_ = true;
         reset_energy_reference_ = true;
     }
-    // One dt per step (issue 9 item 4): the increments of this step are computed with the dt
+    // One dt per step: the increments of this step are computed with the dt
     // the particles and walls moved with, even if the rebuild below picks a new automatic dt
     // (that one takes effect from the next step's motion).
     const double step_dt = dt_;

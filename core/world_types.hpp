@@ -32,7 +32,7 @@ struct EnergyLedger {
     [[nodiscard]] double balance_error() const { return total() - reference; }
 };
 
-/// A bond break: one crack (physics.md §8). Flat joints log one event per element break.
+/// A bond break: one crack (docs/model.md "Crack events"). Flat joints log one event per element break.
 struct BreakEvent {
     std::int64_t step = 0;
     double time = 0.0;          ///< [s]

@@ -1,5 +1,6 @@
 #pragma once
-// Affine (Voigt) estimate of the elastic moduli of a bonded packing (physics.md §9.3), summed
+// Affine (Voigt) estimate of the elastic moduli of a bonded packing (docs/virtual_tests.md
+// "A bound on the modulus"), summed
 // over its actual pairs instead of assuming equal spheres: with the normal and tangential
 // stiffness of every pair (linear contact where the grains overlap, plus the parallel bond where
 // one is installed: k_N = k_n + k̄_n Ā, k_T = k_s + k̄_s Ā) and its branch length l,

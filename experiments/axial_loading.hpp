@@ -1,6 +1,6 @@
 #pragma once
 // The displacement-controlled axial loading shared by the virtual cube tests (compression
-// between platens, direct tension between grips; physics.md §6-§7): both ends move apart or
+// between platens, direct tension between grips; docs/virtual_tests.md): both ends move apart or
 // together at half the test speed each after a half-cosine velocity ramp; at every output
 // interval a curve point records the test's strains and end stresses (load over the initial
 // cross-section), breaks and kinetic energy; the run stops after the peak once the stress has

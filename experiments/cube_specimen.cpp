@@ -16,7 +16,7 @@ double mean_radius(const Packing& k) {
     return sum / static_cast<double>(k.radius.size());
 }
 
-// Explicit paste (issue 11): paste-paste bonds are m.bond, paste-sand (ITZ) bonds m.bond scaled
+// Explicit paste: paste-paste bonds are m.bond, paste-sand (ITZ) bonds m.bond scaled
 // by the ITZ factors, sand-sand pairs bonded with m.bond or frictional only.
 BondFamilyTable family_bonds(const MaterialParams& m) {
     BondFamilyTable t = BondFamilyTable::empty(2);

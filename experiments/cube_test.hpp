@@ -1,5 +1,5 @@
 #pragma once
-// The virtual ASTM C109 cube test with the study's extensometer (physics.md §6-§8):
+// The virtual ASTM C109 cube test with the study's extensometer (docs/virtual_tests.md):
 //   1. the packing is bonded (parallel bonds at every pair within the installation gap) with the
 //      material parameters of this run - one packing serves every parameter set;
 //   2. the lateral vessel walls are removed, the top and bottom ones become frictional platens,
@@ -88,7 +88,7 @@ double mean_particle_density(const Packing& packing);
 
 /// The strain rate [1/s] that keeps the time to the expected peak at least `transits` wave
 /// transit times L/c, with c = sqrt(E*/rho) and rho = mean_particle_density(packing), the
-/// specimen's actual particle masses (physics.md §6 criterion (i)).
+/// specimen's actual particle masses (docs/virtual_tests.md "Loading rate").
 double quasi_static_strain_rate(const Packing& packing, const MaterialParams& material,
                                 double expected_peak_strain = 0.003, double transits = 200.0);
 

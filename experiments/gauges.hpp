@@ -1,5 +1,5 @@
 #pragma once
-// Virtual extensometers (physics.md §7): slabs of particles in the central part of the cube whose
+// Virtual extensometers (docs/virtual_tests.md "Gauges"): slabs of particles in the central part of the cube whose
 // mean displacement stands in for the knife edges of a clip-on gauge. Axial gauge strain is
 //     eps_g = -(w_top - w_bottom) / g      (compression positive),
 // with w the mean axial displacement of the particles of each slab, centred at +-g/2 about

@@ -1,6 +1,6 @@
 #pragma once
 // Specimen genesis in the spirit of PFC's material genesis (Potyondy & Cundall 2004 §3;
-// physics.md §3), with a geometric packer in place of the long dynamic compaction:
+// docs/genesis.md), with a geometric packer in place of the long dynamic compaction:
 //   1. grains sampled by mass from the gradation curve under a size rule (grain_sampler);
 //   2. dropped at random into the cubic vessel and packed by soft-sphere enthalpy minimisation
 //      (dense_placement: positions and the three box edges, no dynamics), jammed at 1e-3 E*

@@ -29,7 +29,7 @@ namespace gradem::exp {
 
 struct MaterialParams;
 
-/// What the calibration does with a parameter (calibration.md §1): the homogeneity acts on the
+/// What the calibration does with a parameter (docs/calibration.md "Homogeneity"): the homogeneity acts on the
 /// stiffness and strength scales; shape parameters are dimensionless.
 enum class ParameterRole : std::uint8_t { stiffness_scale, strength_scale, shape };
 

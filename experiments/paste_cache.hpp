@@ -1,5 +1,5 @@
 #pragma once
-// Cache of explicit-paste specimens (issue 11), next to the sand packings of packing_cache.hpp.
+// Cache of explicit-paste specimens (docs/genesis.md "Paste cache"), next to the sand packings of packing_cache.hpp.
 // The sand packing is cached as before (its key ignores the paste settings); the paste
 // specimen made from it is cached under its own key: FNV-1a 64 over the sand key, every
 // MixDesign and PasteSpec field and kPasteAlgorithmVersion. Two files, each written

@@ -1,5 +1,5 @@
 #pragma once
-// The explicit-paste keys of a cube config (issue 11; experiments/README.md "Explicit paste"):
+// The explicit-paste keys of a cube config (experiments/README.md "Explicit paste"):
 //   [specimen] representation = "parallel_bonds" (default) | "explicit_paste"
 //   [mix]      sand_to_cementitious_volume, water_cement_ratio, cement_specific_gravity,
 //              sand_specific_gravity (default: the dataset sand's specific_gravity),

@@ -21,7 +21,7 @@ namespace gradem::exp {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Rosin-Rammler fit of NIST SRM 114p (8.9 / 14.9 / 24.9 % passing 1 / 2 / 4 µm; models.md §5):
+// Rosin-Rammler fit of NIST SRM 114p (8.9 / 14.9 / 24.9 % passing 1 / 2 / 4 µm):
 // F(d) = 1 - exp(-(d/d')^n) gives 8.4 / 15.0 / 26.2 % and 98.6 % passing 75 µm.
 constexpr double kCementSizeParameter = 15.0e-6;  // d' [m]
 constexpr double kCementSpread = 0.9;             // n [-]

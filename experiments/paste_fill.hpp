@@ -1,13 +1,13 @@
 #pragma once
-// Explicit-paste specimens (issue 11; models.md §5 "bimodal genesis"): the sand packed as today
+// Explicit-paste specimens (docs/genesis.md "Paste fill"): the sand packed as for parallel bonds
 // (genesis.hpp), then its pore space filled with paste particles.
 //   1. dilate: the jammed sand packing (solid fraction φ_p ≈ 0.6) is scaled about the box centre
 //      (centres and box, radii kept) to the mix design's sand fraction φ_s ≈ 0.5, so the grains
-//      float in paste as in the real mortar (models.md §5: sand ≤ 0.55 is below RCP). A mix
+//      float in paste as in the real mortar (a sand fraction ≤ 0.55 is below random close packing). A mix
 //      whose φ_s exceeds φ_p is refused: its paste could not fill the sand's pore space;
 //   2. size: paste particles are sampled by mass from a cement size distribution (Rosin-Rammler
 //      F(d) = 1 - exp(-(d/d')^n), d' = 15 µm, n = 0.9: fitted to NIST SRM 114p's 8.9/14.9/24.9 %
-//      passing 1/2/4 µm, models.md §5) truncated to [min_diameter, max_diameter], or all of one
+//      passing 1/2/4 µm) truncated to [min_diameter, max_diameter], or all of one
 //      coarse-grained size (min = max). Their total volume is the mix's paste fraction × box ×
 //      `solid_fraction`: each paste particle stands for its own volume / solid_fraction of paste
 //      (the rest of the paste is the interstitial space the paste bonds bridge);

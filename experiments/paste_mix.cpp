@@ -6,7 +6,7 @@
 namespace gradem::exp {
 namespace {
 
-constexpr double kPowersWaterPerHydration = 0.359;  // w/c consumed (chemically + gel) per unit α (models.md §5)
+constexpr double kPowersWaterPerHydration = 0.359;  // w/c consumed (chemically + gel) per unit α (Powers & Brownyard)
 
 std::string violates(const char* field, double v, const char* rule) {
     return std::string(field) + " = " + std::to_string(v) + " violates " + rule;

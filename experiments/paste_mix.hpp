@@ -1,12 +1,12 @@
 #pragma once
-// Mix design -> volume fractions of a mortar (issue 11; models.md §5). The study's Type S mortar
+// Mix design -> volume fractions of a mortar (docs/genesis.md "Mix design"). The study's Type S mortar
 // is batched by LOOSE BULK volume (ASTM C270 proportions, cementitious : sand = 1 : 2.6) with
 // w/c = 0.53 by mass. Per unit bulk volume of cementitious material:
 //     m_c = ρ_bulk,c · 1,          m_s = ρ_bulk,s · r,          m_w = (w/c) · m_c          [kg]
 //     V_c = m_c / (SG_c ρ_w),      V_s = m_s / (SG_s ρ_w),      V_w = m_w / ρ_w            [m³]
 // (absolute volumes), and with an air content a (volume fraction of the mortar) every
 // fraction is V_x (1 - a) / (V_c + V_s + V_w). The fresh paste is cement + water.
-// Powers' model (models.md §5; Powers & Brownyard, via NIST [S15]) splits the paste at a
+// Powers' model (Powers & Brownyard) splits the paste at a
 // degree of hydration α:  capillary pores φ_cap = (w/c - 0.359 α) / (w/c + 1/SG_c),
 // unhydrated cement (1 - α)(1/SG_c) / (w/c + 1/SG_c), hydrates = the rest.
 // Simplifications (stated): the cementitious material is treated as portland cement (the

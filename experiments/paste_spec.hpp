@@ -1,5 +1,5 @@
 #pragma once
-// The settings of an explicit-paste specimen (issue 11): the mix design and how the paste
+// The settings of an explicit-paste specimen: the mix design and how the paste
 // particles are made (experiments/paste_fill.hpp), carried by SpecimenSpec::paste so every
 // command that loads a specimen (compress, tension, calibrate, study) gets them unchanged.
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 // The virtual direct-tension test of the cube specimen (the same packing, material, bonds and
-// settling as the compression test, cube_test.hpp; physics.md §6-§8 apply with tension
-// positive). As PFC's direct-tension test, the ends are held by grips of grains instead of
+// settling as the compression test, cube_test.hpp; docs/virtual_tests.md "Direct tension",
+// tension positive). As PFC's direct-tension test, the ends are held by grips of grains instead of
 // glued platens:
 //   1. the packing is bonded and settled between the fixed platens exactly as for compression
 //      (cube_specimen.hpp);

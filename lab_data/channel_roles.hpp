@@ -1,5 +1,5 @@
 #pragma once
-// Inference of column roles from names and units (ecosystem.md §3.4 item 4), with overrides.
+// Inference of column roles from names and units, with overrides.
 // Name aliases cover MTS (Running Time, Axial Force, Axial Displacement, Axial Strain, Strain 1,
 // Axial Ext), MTS 793 German labels (Laufzeit, Kraft, Weg, Dehnung), Instron Bluehill (Time,
 // Extension = crosshead, Load; Bluehill Universal Displacement, Force) and plain names.

@@ -14,7 +14,7 @@
 //                    ε1 = 50 µε. Both points are read on the ascending branch by local
 //                    least-squares lines over a narrow window (robust to sampling noise).
 //   tangent modulus  slope dσ/dε of a least-squares line over stresses within ±5 % of peak
-//                    around 50 % of peak on the ascending branch.
+//                    about 50 % of peak on the ascending branch.
 //   Poisson's ratio  ASTM C469 §7: (εt2 − εt1)/(ε2 − 0.000050), if a lateral strain is given.
 //   Popovics fit     σ = f'c·n·(ε/ε'c)/(n − 1 + (ε/ε'c)^n), n = E/(E − f'c/ε'c) (Popovics 1973),
 //                    least squares with Ceres on the ascending branch, standard errors from

@@ -1,5 +1,6 @@
 #pragma once
-// Readers for the load-frame exports users actually have (ecosystem.md §3), detected from the
+// Readers for the load-frame exports users actually have (adding one: docs/extending.md "A
+// lab-file format"), detected from the
 // file itself:
 //   mts-testsuite     MTS TestSuite (TW Elite/Essential) CSV: "Key: value" lines (maybe quoted),
 //                     blank lines, quoted names with trailing spaces, a units row, UTF-8 BOM.

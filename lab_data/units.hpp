@@ -1,6 +1,6 @@
 #pragma once
 // Physical units as lab exports spell them: "(sec)", "[mm]", "kN", "lbf", "mm/mm", "%", "µε",
-// "MPa", "psi", ... Every value is converted to SI once, when it is read (style.md §8.5).
+// "MPa", "psi", ... Every value is converted to SI once, when it is read.
 
 #include <optional>
 #include <string>

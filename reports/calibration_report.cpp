@@ -247,7 +247,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"targets", all_targets},
             {"shape_index_d", all_d},
             {"target_tolerances", {{"modulus", kTargetTolerances.modulus}, {"peak_stress", kTargetTolerances.peak},
-                                   {"strain_at_peak", kTargetTolerances.strain}, {"source", "issue 9: modulus and peak within 5 %, strain at peak within 10 %"}}},
+                                   {"strain_at_peak", kTargetTolerances.strain}, {"source", "calibrate/target_tolerance.hpp: modulus and peak within 5 %, strain at peak within 10 %"}}},
             {"stages", stages}};
 }
 

@@ -87,7 +87,7 @@ json specimen_json(const Packing& k, const CubeConfig& c) {
             {"scale", c.specimen.size_rule.scale}};
 }
 
-/// Explicit paste (issue 11): the fill's report and the bonds per family pair.
+/// Explicit paste: the fill's report and the bonds per family pair.
 json paste_json(const PasteReport& p, const CubeTestResult& r) {
     return {{"sand_count", p.sand_count},
             {"paste_count", p.paste_count},

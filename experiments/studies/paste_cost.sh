@@ -1,5 +1,5 @@
 #!/bin/sh
-# Cost and macro response, parallel bonds vs explicit paste (issue 11 item 4): the same sands,
+# Cost and macro response, parallel bonds vs explicit paste: the same sands,
 # edge (2.5 mm), seed (1) and start [material] (calibration_cube.toml / paste_cube.toml), the
 # paste coarse-grained at each size in PASTE_SIZES_MM (coarser than 0.1 mm does not fit the
 # pores at solid_fraction 0.3: the fill refuses it). Runs `gradem compress` per case into

@@ -1,5 +1,5 @@
-// When a calibrated target counts as met (calibrate/target_tolerance.hpp: issue 9's modulus and
-// peak within 5 %, strain at peak within 10 %), as the calibration summary reports it.
+// When a calibrated target counts as met (calibrate/target_tolerance.hpp: modulus and peak
+// within 5 %, strain at peak within 10 %), as the calibration summary reports it.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -48,7 +48,7 @@ bool met_in_summary(const cal::CalibrationProblem& p, const double (&error)[3], 
 
 }  // namespace
 
-TEST_CASE("target tolerances: modulus and peak within 5 %, strain at peak within 10 % (issue 9)", "[calibrate][report]") {
+TEST_CASE("target tolerances: modulus and peak within 5 %, strain at peak within 10 %", "[calibrate][report]") {
     using cal::Quantity;
     CHECK(cal::target_met(Quantity::strain, 0.08));
     CHECK(cal::target_met(Quantity::strain, -0.08));

@@ -1,6 +1,6 @@
 // The virtual cube test on a small bonded specimen (~800 grains of the Van Buren sand,
 // d >= 0.3 mm, 3.6 mm cube): quasi-static platen balance, the affine bound on the modulus, the
-// homogeneity laws of the bonded-particle model on the whole test (calibration.md §1), and
+// homogeneity laws of the bonded-particle model on the whole test (docs/model.md "Homogeneity"), and
 // bitwise determinism across thread counts.
 #include <catch2/catch.hpp>
 #include <cmath>

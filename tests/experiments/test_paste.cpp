@@ -1,5 +1,5 @@
-// Explicit paste (issue 11): the mix design's volume fractions against hand computation and
-// Powers' numbers (models.md §5); bad mixes name the key; a paste fill of a sand lattice
+// Explicit paste: the mix design's volume fractions against hand computation and
+// Powers' numbers (docs/genesis.md "Mix design"); bad mixes name the key; a paste fill of a sand lattice
 // matches the mix design's fractions within a stated tolerance, leaves no paste particle
 // overlapping a sand grain beyond the tolerance, and refuses a size that would not fit memory.
 #include <catch2/catch.hpp>
@@ -54,7 +54,7 @@ TEST_CASE("mix design: absolute volume fractions of the study's mortar by hand",
     CHECK(f.sand + f.paste + f.air == Approx(1.0).epsilon(1e-14));
     CHECK(f.sand_to_cement_mass == Approx(3328.0 / 1506.0));
     CHECK(f.paste_density == Approx((1506.0 + 798.18) / (0.478095 + 0.79818)).epsilon(1e-5));
-    // models.md §5 ranges: sand 0.50-0.55, cement 0.17-0.19, water 0.28-0.32 (absolute volumes).
+    // A mortar's ranges (docs/genesis.md "Mix design"): sand 0.50-0.55, cement 0.17-0.19, water 0.28-0.32 (absolute volumes).
     CHECK(f.cement > 0.17);
     CHECK(f.cement < 0.19);
 
@@ -67,7 +67,7 @@ TEST_CASE("mix design: absolute volume fractions of the study's mortar by hand",
     CHECK(g.sand + g.paste + g.air == Approx(1.0).epsilon(1e-14));
 }
 
-TEST_CASE("mix design: Powers' split reproduces models.md §5 (α 0.8, SG 3.2)", "[paste]") {
+TEST_CASE("mix design: Powers' split reproduces the hand computation (α 0.8, SG 3.2)", "[paste]") {
     MixDesign m = study_mix();
     m.cement_specific_gravity = 3.2;
     m.hydration_degree = 0.8;
@@ -145,7 +145,7 @@ TEST_CASE("paste fill: a cement size distribution truncated at the smallest size
     CHECK(n > 1e-9 / (M_PI / 6 * std::pow(0.3e-3, 3)));
     CHECK(n < 1e-9 / (M_PI / 6 * std::pow(0.04e-3, 3)));
     const lab::GradationCurve c = cement_size_curve();
-    CHECK(c.passing_fraction(75e-6) > 0.95);  // models.md §5: >= 95 % below 75 µm
+    CHECK(c.passing_fraction(75e-6) > 0.95);  // a cement: >= 95 % below 75 µm (docs/genesis.md "Paste fill")
     CHECK(c.passing_fraction(1e-6) == Approx(0.089).margin(0.01));  // SRM 114p
 }
 

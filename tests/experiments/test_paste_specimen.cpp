@@ -1,4 +1,4 @@
-// Explicit-paste specimens end to end (issue 11): the config keys ([specimen] representation,
+// Explicit-paste specimens end to end: the config keys ([specimen] representation,
 // [mix], [paste]) with their errors naming file, line and key; the paste cache keyed on the
 // paste settings; bond families in the bonded cube specimen (sand-sand frictional, ITZ bonds
 // scaled, paste-paste bonds = [material]); the cube test of a paste specimen bitwise the same
@@ -204,7 +204,7 @@ TEST_CASE("paste specimen: the cube test is bitwise the same for 1, 2 and 3 thre
 }
 
 TEST_CASE("paste specimen: the auto loading rate is quasi-static by the particles' own masses", "[paste]") {
-    // Criterion (physics.md §6 (i)): time to the expected peak ε_p/ε̇ ≥ 200 transits L/c, c =
+    // Criterion (docs/virtual_tests.md "Loading rate"): time to the expected peak ε_p/ε̇ ≥ 200 transits L/c, c =
     // sqrt(E*/ρ) with ρ = Σm/ΣV of the bonded World's particles (paste particles weigh
     // paste density / solid fraction: the sand density would give a rate too fast).
     const test::TempDir dir("paste-rate");

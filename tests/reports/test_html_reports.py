@@ -1,4 +1,4 @@
-"""The HTML reports, end to end (issue 12): each `gradem` command that writes a report is run on
+"""The HTML reports, end to end: each `gradem` command that writes a report is run on
 small real inputs, its report.html is opened in headless Chromium, and the test asserts that the
 expected number of figures is there and rendered (an <svg> with a box and drawn paths, counted by
 the page's own check into <html data-figures-rendered>), that the page logged nothing to the
