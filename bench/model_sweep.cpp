@@ -1,5 +1,5 @@
 // gradem-model-sweep: how a bond model's shape parameters move the cube test's shape index
-// D = E ε_peak/σ_peak (issue 9), with its modulus, peak and strain at peak, one JSON row per
+// D = E ε_peak/σ_peak, with its modulus, peak and strain at peak, one JSON row per
 // cube test. The lab's D is 1.71 (pre-blended) and 2.10 (Van Buren); the homogeneity of the
 // model (calibrate/README.md) lets the calibration rescale E and the peak freely, so D is the
 // one number a shape parameter must move for the strain at peak to be met.

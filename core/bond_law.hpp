@@ -1,12 +1,12 @@
 #pragma once
-// What every bond law shares (issue 9): the bond record, the bond disc geometry and stiffness,
+// What every bond law shares: the bond record, the bond disc geometry and stiffness,
 // and the interface of a law kernel. The laws themselves are pure kernels, one header each:
 //     core/parallel_bond_law.hpp  (Potyondy & Cundall 2004; PFC linearpbond)
-//     core/soft_bond_law.hpp      (PFC softbond semantics, models.md §1)
-//     core/flat_joint_law.hpp     (Potyondy 2012 flat joint, models.md §3)
+//     core/soft_bond_law.hpp      (PFC softbond semantics)
+//     core/flat_joint_law.hpp     (Potyondy 2012 flat joint)
 // and core/bond_models.hpp holds the one table that maps BondModel to its kernel.
 //
-// Geometry (physics.md §2.1-2.2): a bond is a disc of cement of radius R̄ = λ̄ min(R_A, R_B) with
+// Geometry (Potyondy & Cundall 2004; docs/bond_laws.md): a bond is a disc of cement of radius R̄ = λ̄ min(R_A, R_B) with
 // area Ā = π R̄², moment of inertia Ī = π R̄⁴/4 and polar moment J̄ = π R̄⁴/2, and stiffness per
 // unit area k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n/κ̄. Sign convention: the bond normal force is
 // TENSION positive; shear force, twist and bending moments are stored as acting on B (A gets
@@ -136,7 +136,7 @@ struct TimeStepStiffness {
     double rotational = 0.0;     ///< [N m/rad], for a particle of radius r
 };
 
-/// Advances F̄_n, F̄_s, M̄_t, M̄_b by one step of relative motion (physics.md §2.3):
+/// Advances F̄_n, F̄_s, M̄_t, M̄_b by one step of relative motion (Potyondy & Cundall 2004):
 ///     F̄_n += k̄_n Ā dU_n,  F̄_s = rot(F̄_s) - k̄_s Ā dU_s,
 ///     M̄_t -= k̄_s J̄ dθ_t,  M̄_b = rot(M̄_b) - k̄_n Ī dθ_b.
 inline void update_bond_forces(ParallelBond& b, const BondSection& s, const BondStiffness& k,

@@ -19,9 +19,9 @@ struct ContactParams {
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
-/// Which law the installed bonds follow. Each law is one kernel header in core/ (issue 9):
+/// Which law the installed bonds follow. Each law is one kernel header in core/ (docs/bond_laws.md):
 /// parallel_bond (Potyondy & Cundall 2004, PFC linearpbond), soft_bond (PFC softbond
-/// semantics, models.md §1), flat_joint (Potyondy 2012, models.md §3).
+/// semantics), flat_joint (Potyondy 2012).
 enum class BondModel : std::uint8_t { parallel_bond = 0, soft_bond = 1, flat_joint = 2 };
 
 /// "parallel_bond", "soft_bond", "flat_joint" (the names configs and reports use).
@@ -29,7 +29,7 @@ const char* bond_model_name(BondModel model);
 /// The model of that name, or nullopt for an unknown name.
 std::optional<BondModel> parse_bond_model(const std::string& name);
 
-/// Soft bond shape parameters (models.md §1): at σ̄_c the bond softens instead of breaking.
+/// Soft bond shape parameters (docs/bond_laws.md "Soft bond"): at σ̄_c the bond softens instead of breaking.
 struct SoftBondParams {
     double softening_factor = 0.3;  ///< ζ: softening slope is -ζ k̄_n [Pa/m], > 0 [-]
     double cut_fraction = 0.2;      ///< γ: breaks once the softened stress is <= γ σ̄_c, in [0, 1) [-]

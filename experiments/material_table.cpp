@@ -141,7 +141,7 @@ const std::array kTable = {
         .description = "coefficient of variation of sigma-bar_c and c-bar together (calibration only)",
         .in_config = false, .get = strength_cv_get, .set = strength_cv_set,
         .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
-    // ---- explicit paste (issue 11): the interfacial-zone factors, config keys of [paste] ----
+    // ---- explicit paste: the interfacial-zone factors, config keys of [paste] ----
     MaterialParameter{.key = "itz_strength_factor", .unit = "-",
         .description = "paste-sand (ITZ) bond strengths / paste-paste, explicit paste only (config: [paste] itz_strength_factor)",
         .in_config = false, .paste_only = true,
@@ -187,7 +187,7 @@ const std::array kTable = {
         .get_int = int_get<&M::bond, &B::seed>, .set_int = int_set<&M::bond, &B::seed>,
         .si_group = "bond", .si_name = "seed",
         .range = non_negative},
-    // ---- soft bond (models.md §1) ----
+    // ---- soft bond (docs/bond_laws.md "Soft bond") ----
     MaterialParameter{.key = "softening_factor", .unit = "-",
         .description = "zeta, softening slope / bond normal stiffness (soft_bond)", .models = kSoftBond,
         .get = si_get<&M::bond, &B::soft, &SoftBondParams::softening_factor>,
@@ -202,7 +202,7 @@ const std::array kTable = {
         .si_group = "soft_bond", .si_name = "cut_fraction", .core_field = "SoftBondParams::cut_fraction",
         .range = unit_open_right,
         .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
-    // ---- soft bond and flat joint: one spring set (models.md §1, §3) ----
+    // ---- soft bond and flat joint: one spring set (docs/bond_laws.md) ----
     MaterialParameter{.key = "bond_replaces_contact", .unit = "-",
         .description = "true: while intact the bond replaces the linear contact (PFC softbond/flatjoint, one spring set); "
                        "false: bond and contact in parallel (soft_bond, flat_joint)",
@@ -211,7 +211,7 @@ const std::array kTable = {
         .get_int = int_get<&M::bond, &B::replaces_contact>, .set_int = int_set<&M::bond, &B::replaces_contact>,
         .si_group = "bond", .si_name = "replaces_contact", .core_field = "BondParams::replaces_contact",
         .range = {0.0, 1.0, false, false}, .calibration = Calibration::fixed_only, .lower = 0.0, .upper = 1.0},
-    // ---- flat joint (models.md §3) ----
+    // ---- flat joint (docs/bond_laws.md "Flat joint") ----
     MaterialParameter{.key = "radial_elements", .unit = "-", .description = "N_r, elements across the joint radius (flat_joint)",
         .models = kFlatJoint, .integer = true,
         .get = si_get<&M::bond, &B::flat, &FlatJointParams::radial_elements>,

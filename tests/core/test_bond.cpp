@@ -1,5 +1,5 @@
 // Parallel bond: force/moment laws for pure tension, shear, twist and bending, and breakage on
-// the step predicted from the strengths (Potyondy & Cundall 2004; physics.md §9.4 oracle 2).
+// the step predicted from the strengths (Potyondy & Cundall 2004; docs/model.md "What the tests check").
 // B is driven kinematically (prescribed velocity/spin), A is held fixed.
 #include <catch2/catch.hpp>
 #include <cmath>

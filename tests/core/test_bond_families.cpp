@@ -1,4 +1,4 @@
-// Bond families (issue 11): particles carry a family tag and bonds take their parameters from
+// Bond families: particles carry a family tag and bonds take their parameters from
 // the table entry of their family pair. Oracles: a table whose entries all equal one parameter
 // set reproduces the single-parameter installation bitwise; a specimen of one family
 // reproduces the single-family result of that family's parameters; a pair whose entry is

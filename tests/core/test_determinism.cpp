@@ -1,4 +1,4 @@
-// Bitwise determinism for any thread count (Box2D's determinism test, style.md §2): a bonded
+// Bitwise determinism for any thread count (as Box2D's determinism test; docs/model.md "Determinism for any thread count"): a bonded
 // packing compressed past its first breaks hashes the same with 1, 2 and 3 threads.
 #include <catch2/catch.hpp>
 
@@ -60,10 +60,9 @@ TEST_CASE("state after N steps hashes the same with 1, 2 and 3 threads", "[core]
     CHECK(h1 == h3);
     CHECK(b1 == b2);
     CHECK(b1 == b3);
-    // Pinned before the bond-law refactor (issue 9): the parallel bond's results must stay
-    // bitwise identical. Change this only with a stated reason (a deliberate change of the
+    // Pinned: the parallel bond's results must stay bitwise identical. Change this only with a stated reason (a deliberate change of the
     // arithmetic), never to make a refactor pass.
-    // Re-pinned for the dt fix, issue 9 item 4: the step that rebuilds neighbours now computes
+    // Re-pinned once, for one dt per step: the step that rebuilds neighbours computes
     // its increments with the dt the particles moved with (was the freshly recomputed one);
     // before the fix: 5347738648602356891 / 1532 breaks (the bond-law refactor kept those).
     CHECK(h1 == 8005052472423390512ULL);

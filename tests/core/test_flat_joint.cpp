@@ -1,4 +1,4 @@
-// Flat joint (core/flat_joint_law.hpp; models.md §3 and oracle 6): with every element bonded it
+// Flat joint (core/flat_joint_law.hpp; docs/bond_laws.md "Flat joint"): with every element bonded it
 // is the parallel bond; uniform tension breaks every element on the parallel bond's step; pure
 // bending breaks the elements one group at a time along the moment-rotation curve predicted from
 // the element geometry, and the broken, half-open joint keeps a moment through its compressed

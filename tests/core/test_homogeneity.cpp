@@ -1,4 +1,4 @@
-// Homogeneity of the bonded-particle model (physics.md §9.4 oracle 4; calibration.md §1),
+// Homogeneity of the bonded-particle model (docs/model.md "Homogeneity"; docs/calibration.md "Homogeneity"),
 // on a small bonded packing pulled apart by its top layer (bottom layer held):
 // (a) moduli x 4 with density x 4 (so the dynamics are unchanged) -> every force x 4;
 // (b) strengths x 2, pulled twice as far in the same steps -> break loads x 2, same break step.

@@ -1,5 +1,5 @@
 // Simple-cubic bonded lattice under uniaxial compression along a lattice axis:
-// E = (k_n + k̄_n Ā) / (2R), which is pi E*/2 for λ̄ = 1 and Ē* = E* (physics.md §9.4 oracle 1).
+// E = (k_n + k̄_n Ā) / (2R), which is pi E*/2 for λ̄ = 1 and Ē* = E* (docs/model.md "What the tests check").
 #include <catch2/catch.hpp>
 
 #include "core/contact_law.hpp"

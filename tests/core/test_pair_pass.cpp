@@ -1,4 +1,4 @@
-// The fused contact + parallel-bond pass (core/world_pairs.cpp, issue 10) keeps the bookkeeping
+// The fused contact + parallel-bond pass (core/world_pairs.cpp) keeps the bookkeeping
 // of the two separate phases it replaced: bond energies summed per fixed bond block in bond
 // order, breaks logged in bond order, everything independent of the thread count. The packing
 // has several pair and bond blocks (> 2 x kBlockSize bonds), overlapping and open bonded pairs,

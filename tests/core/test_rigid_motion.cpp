@@ -1,5 +1,5 @@
 // Rigid-body motion of a bonded cluster stores no bond force and breaks nothing
-// (physics.md §9.4 oracle 3): every particle is driven kinematically along the exact rigid
+// (docs/model.md "What the tests check"): every particle is driven kinematically along the exact rigid
 // motion (chord velocities), with the spin equal to the body's angular velocity.
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Soft bond (core/soft_bond_law.hpp; models.md §1 and its oracles 2-4): a single bond pulled in
+// Soft bond (core/soft_bond_law.hpp; docs/bond_laws.md "Soft bond"): a single bond pulled in
 // tension traces the elastic line, then the softening line of slope -ζ k_n, and breaks where the
 // softened stress reaches γ σ_c; the energy dissipated is the area under the curve,
 // G Ā = σ_c²/(2 k_n) [1 + (1-γ²)/ζ] Ā. Unloading and reloading follow the damaged secant;

@@ -1,4 +1,4 @@
-// One dt per step (issue 9 item 4): with the automatic time step, the step that rebuilds the
+// One dt per step: with the automatic time step, the step that rebuilds the
 // neighbour list (and so picks a new dt) must compute its increments with the dt the particles
 // moved with. Oracle: a bond stretched at constant speed carries F_n = k_n Ā x opening exactly,
 // whatever the dt history, while a third grain flying past changes the critical time step at
