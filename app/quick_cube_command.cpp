@@ -32,7 +32,7 @@ QuickCubeOptions parse_quick_cube(const std::vector<std::string>& args) {
     app.add_option("--particles", o.particles, "number of spheres")->check(CLI::Range(std::int64_t{100}, std::int64_t{2000000}));
     app.add_option("--seed", o.seed, "packing and strength seed");
     app.add_option("--strain-rate", o.strain_rate, "platen strain rate [1/s]")->check(CLI::Range(1.0, 1000.0));
-    app.add_option("--out", o.out, "folder for curve.csv (default: no files)");
+    app.add_option("--out", o.out, "folder for load_curve.csv (default: no files)");
     parse_command(app, args);
     return o;
 }

@@ -19,6 +19,7 @@
 // and material (the config's [tension] table) and adds "tensile_mpa", "strength_ratio" (σc/σt),
 // "tension_steps" and "tension_wall_s".
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -63,6 +64,12 @@ Options parse(int argc, char** argv) {
     Options o;
     for (bench::ArgReader args(argc, argv); args.next();) {
         const std::string a = args.arg();
+        if (a == "--help" || a == "-h") {
+            std::printf("usage: gradem-model-sweep <cube config.toml> [--model M] [--set key=value]... "
+                        "[--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension]\n"
+                        "  keys: the [material] keys of experiments/README.md; one JSON row per test on stdout\n");
+            std::exit(0);
+        }
         if (a == "--model") o.model = args.value();
         else if (a == "--set" || a == "--sweep") {
             const std::string v = args.value();

@@ -44,10 +44,19 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 int main(int argc, char** argv) {
     int runs = 2000, points = 200;
-    for (int k = 1; k + 1 < argc; k += 2) {
+    const char* usage = "usage: mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P]\n";
+    for (int k = 1; k < argc; k += 2) {
         const std::string o = argv[k];
+        if (o == "--help" || o == "-h") {
+            std::printf("%s", usage);
+            return 0;
+        }
+        if (k + 1 >= argc || (o != "--runs" && o != "--curve-points")) {
+            std::fprintf(stderr, "gradem-mpi-bench: unknown or incomplete option '%s'\n%s", o.c_str(), usage);
+            return 2;
+        }
         if (o == "--runs") runs = std::atoi(argv[k + 1]);
-        else if (o == "--curve-points") points = std::atoi(argv[k + 1]);
+        else points = std::atoi(argv[k + 1]);
     }
     try {
         return cal::mpi::run_job(
