@@ -14,14 +14,6 @@ using namespace gradem::test;
 
 namespace {
 
-BondParams joint(std::int32_t nr, std::int32_t na) {
-    BondParams bp = rig_bond(BondModel::flat_joint);
-    bp.flat.radial_elements = nr;
-    bp.flat.angular_elements = na;
-    bp.flat.residual_friction = 0.5;
-    return bp;
-}
-
 bool close(const Vec3& a, const Vec3& b, double scale) { return norm(a - b) <= 1e-9 * scale; }
 
 }  // namespace

@@ -12,14 +12,6 @@ using namespace gradem::test;
 
 namespace {
 
-BondParams joint(std::int32_t nr, std::int32_t na) {
-    BondParams bp = rig_bond(BondModel::flat_joint);
-    bp.flat.radial_elements = nr;
-    bp.flat.angular_elements = na;
-    bp.flat.residual_friction = 0.5;
-    return bp;
-}
-
 BondParams slit_joint(std::int32_t nr, std::int32_t na) {
     BondParams bp = joint(nr, na);
     bp.flat.bonded_fraction = 0.0;

@@ -65,6 +65,14 @@ Packing tiny_packing() {
     return k;
 }
 
+/// An empty 3 mm box of sand density: what the automatic rate reads of a packing.
+Packing three_mm_packing() {
+    Packing k;
+    k.box_hi = {3e-3, 3e-3, 3e-3};
+    k.density = 2640.0;
+    return k;
+}
+
 }  // namespace
 
 TEST_CASE("[tension] is optional, read with the cube config, and takes the test's loading", "[tension_config]") {
@@ -84,9 +92,7 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
     CHECK(with.test.loading.max_strain == 0.02);  // the compression reader accepts (and ignores) [tension]
 
     SECTION("the auto strain rate: compression's rule at the expected tensile peak strain") {
-        Packing k;
-        k.box_hi = {3e-3, 3e-3, 3e-3};
-        k.density = 2640.0;
+        const Packing k = three_mm_packing();
         CubeConfig automatic = with;
         automatic.auto_strain_rate = true;
         const double rate = tension_strain_rate(automatic, t, k);
@@ -95,9 +101,7 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
         CHECK(tension_strain_rate(with, t, k) == with.test.loading.strain_rate);
     }
     SECTION("without auto_peak_strain the expected tensile peak strain comes from the material") {
-        Packing k;
-        k.box_hi = {3e-3, 3e-3, 3e-3};
-        k.density = 2640.0;
+        const Packing k = three_mm_packing();
         CubeConfig automatic = plain;
         automatic.auto_strain_rate = true;
         automatic.material.bond.tensile_strength_mean = 16.0e6;
