@@ -3,6 +3,7 @@
 // calibration problems). A Section remembers every key asked for, records where each value
 // came from (line, text as written, or "(default)") for error messages, and finish() rejects
 // keys nobody asked for. Errors are common::InputError "file:line: key 'table.key' = v ...".
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -69,6 +70,7 @@ public:
         const toml::node* n = find(key);
         if (!n) return record_default(key, show(v / to_si), to_si != 1.0);
         if (!n->is_integer() && !n->is_floating_point()) type_error(key, *n, "a number");
+        if (!std::isfinite(n->value<double>().value())) type_error(key, *n, "a finite number");
         v = n->value<double>().value() * to_si;
         record(key, *n, to_si != 1.0);
     }

@@ -153,6 +153,11 @@ TEST_CASE("bad configs are rejected with file, line, key, value and rule", "[cub
         require_rejected(file, 4, {"key 'test.strain_rate_per_s' = \"fast\"", "\"auto\""});
         write_file(file, config_with("output", "vtk = 1"));
         require_rejected(file, 4, {"key 'output.vtk' = 1", "true or false"});
+        // Non-finite numbers never reach a validator (an infinite edge would exhaust memory in genesis).
+        write_file(file, config_with("genesis", "edge_mm = inf"));
+        require_rejected(file, 4, {"key 'genesis.edge_mm' = inf", "expected a finite number"});
+        write_file(file, config_with("material", "friction = nan"));
+        require_rejected(file, 4, {"key 'material.friction' = nan", "expected a finite number"});
     }
     SECTION("out of range, rule from the struct's validator") {
         write_file(file, config_with("material", "radius_multiplier = 1.5"));
