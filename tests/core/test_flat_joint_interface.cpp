@@ -72,6 +72,7 @@ TEST_CASE("flat joint: the friction angle adds |sigma| tan(phi) to the shear str
         }
         CHECK(rig.bond().state == BondState::broken_shear);
         CHECK(rig.bond().interface == 1);
+        for (std::size_t e = 0; e < 4; ++e) CHECK_FALSE(flat_joint_element_bonded(rig.world.bond_side_state(0), e));
         for (int s = 0; s < 300; ++s) rig.world.step();
         CHECK(bond_acts(rig.bond()));
         const double normal = rig.bond().normal_force;
