@@ -32,6 +32,7 @@ public:
         return o;
     }
     std::string fingerprint() const override { return inner_->fingerprint(); }
+    std::string run_fingerprint(cal::CubeTest t) const override { return inner_->run_fingerprint(t); }
 
 private:
     std::unique_ptr<cal::CubeModel> inner_;

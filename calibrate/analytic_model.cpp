@@ -54,23 +54,25 @@ double pseudo_normal(std::uint64_t sand, std::uint64_t seed, std::uint64_t outpu
 
 class AnalyticCubeModel final : public CubeModel {
 public:
-    AnalyticCubeModel(std::size_t sands, double noise, double diverge_above, CubeTest test)
-        : sands_(sands), noise_(noise), diverge_above_(diverge_above), test_(test) {}
+    AnalyticCubeModel(std::size_t sands, double noise, double diverge_above)
+        : sands_(sands), noise_(noise), diverge_above_(diverge_above) {}
 
     void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
 
     RunOutcome run(const RunRequest& q, double) const override {
-        RunOutcome out = test_ == CubeTest::tension ? tension(q) : compression(q);
+        RunOutcome out = q.test == CubeTest::tension ? tension(q) : compression(q);
         if (out.ok()) out.wall_seconds = kNominalWallSeconds;
         return out;
     }
 
-    std::string fingerprint() const override {
+    std::string fingerprint() const override { return run_fingerprint(CubeTest::compression); }
+
+    std::string run_fingerprint(CubeTest test) const override {
         // Still v1: the parallel bond's outputs did not change when the other laws' terms came;
         // their runs differ from it in the material key (model and its parameters).
         char buf[96];
         std::snprintf(buf, sizeof buf, "analytic stand-in v1; sands %zu; noise %a; diverge %a", sands_, noise_, diverge_above_);
-        return test_ == CubeTest::tension ? std::string(buf) + "; direct tension v1" : std::string(buf);
+        return test == CubeTest::tension ? std::string(buf) + "; direct tension v1" : std::string(buf);
     }
 
 private:
@@ -126,13 +128,12 @@ private:
 
     std::size_t sands_;
     double noise_, diverge_above_;
-    CubeTest test_;
 };
 
 }  // namespace
 
-std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise, double diverge_above_gpa, CubeTest test) {
-    return std::make_unique<AnalyticCubeModel>(sands, noise, diverge_above_gpa, test);
+std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise, double diverge_above_gpa) {
+    return std::make_unique<AnalyticCubeModel>(sands, noise, diverge_above_gpa);
 }
 
 }  // namespace gradem::cal

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "calibrate/ledger.hpp"
 #include "common/hash.hpp"
@@ -10,11 +11,13 @@ namespace gradem::cal {
 namespace {
 
 /// Max relative standard error of the seed mean over the evaluated sands, by quantity.
-void measure_noise(const Evaluation& e, double out[3]) {
+void measure_noise(const Evaluation& e, double out[kQuantityCount]) {
     for (const SandOutcome& s : e.sands)
-        for (int k = 0; k < 3; ++k)
-            if (s.ok > 1 && std::isfinite(s.std[k]) && s.mean[k] != 0.0)
-                out[k] = std::max(out[k], std::fabs(s.std[k] / s.mean[k]) / std::sqrt(static_cast<double>(s.ok)));
+        for (Quantity q : {Quantity::modulus, Quantity::peak, Quantity::strain, Quantity::tension}) {
+            const int k = static_cast<int>(q);
+            if (s.count(q) > 1 && std::isfinite(s.std[k]) && s.mean[k] != 0.0)
+                out[k] = std::max(out[k], std::fabs(s.std[k] / s.mean[k]) / std::sqrt(static_cast<double>(s.count(q))));
+        }
 }
 
 CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterSpace& space, Evaluator& evaluator,
@@ -44,6 +47,18 @@ const SandOutcome* CalibrationStage::outcome(std::size_t sand) const {
     return nullptr;
 }
 
+const SandOutcome* CalibrationStage::validation_outcome(std::size_t sand) const {
+    for (const SandOutcome& s : validation.evaluation.sands)
+        if (s.sand == sand) return &s;
+    return nullptr;
+}
+
+std::vector<std::size_t> CalibrationStage::sands() const {
+    std::vector<std::size_t> all = fitted;
+    all.insert(all.end(), predicted.begin(), predicted.end());
+    return all;
+}
+
 const Evaluation* CalibrationStage::evaluation_of(std::size_t sand) const {
     for (const auto* e : {&solution.best_eval, &prediction})
         for (const SandOutcome& s : e->sands)
@@ -51,9 +66,20 @@ const Evaluation* CalibrationStage::evaluation_of(std::size_t sand) const {
     return nullptr;
 }
 
-std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, CubeTest test) {
-    if (problem.model == "analytic") return make_analytic_model(problem.sands.size(), 0.003, 0.0, test);
-    return make_dem_model(problem.base, problem.sands, test);
+namespace {
+
+std::unique_ptr<CubeModel> make_specimen_model(const CalibrationProblem& problem, bool tension) {
+    if (problem.model == "analytic") return make_analytic_model(problem.sands.size(), 0.003, 0.0);
+    return make_dem_model(problem.base, problem.sands, tension || problem.tension.fitted());
+}
+
+}  // namespace
+
+std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, bool tension) {
+    if (!problem.validation.enabled()) return make_specimen_model(problem, tension);
+    return std::make_unique<ValidatedModel>(make_specimen_model(problem, tension),
+                                            make_specimen_model(validation_problem(problem), tension), problem.sands.size(),
+                                            problem.validation.seeds);
 }
 
 std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model) {
@@ -84,7 +110,7 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
     log("runs on " + executor.describe());
     executor.prepare(problem.seeds, log);
     const ParameterSpace space(problem.parameters, problem.base.material);
-    Evaluator evaluator(problem, space, executor, ledger, model.fingerprint(), progress);
+    Evaluator evaluator(problem, space, executor, ledger, model, progress);
     // 3. The mode's solves.
     std::vector<std::size_t> all;
     for (std::size_t s = 0; s < problem.sands.size(); ++s) all.push_back(s);
@@ -108,6 +134,15 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
             }
         }
         result.stages.push_back(std::move(stage));
+    }
+    // 4. The validation specimens: each stage's result where the fit never looked.
+    if (problem.validation.enabled()) {
+        const auto* validated = dynamic_cast<const ValidatedModel*>(&model);
+        if (!validated) throw std::logic_error("run_calibration: a problem with [validation] needs make_model()'s ValidatedModel");
+        for (CalibrationStage& st : result.stages) {
+            st.validation = validate_point(problem, *validated, executor, ledger, st.solution.best, st.sands(), log);
+            result.validation_runs += st.validation.runs;
+        }
     }
     result.history = evaluator.history();
     result.runs_used = evaluator.runs_used();

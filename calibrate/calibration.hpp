@@ -5,6 +5,7 @@
 //   per_sand  one solve per sand (3 targets each: no test of the model, only a fit)
 //   study     the study's protocol: calibrate on `calibrate_on`, then predict the other
 //             sands with the same parameters and report the prediction error
+// With [validation], each stage's result is then run on the validation specimens.
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "calibrate/run_executor.hpp"
 #include "calibrate/solver.hpp"
 #include "calibrate/uncertainty.hpp"
+#include "calibrate/validation.hpp"
 
 namespace gradem::cal {
 
@@ -25,9 +27,14 @@ struct CalibrationStage {
     SolveResult solution;
     Uncertainty uncertainty;
     Evaluation prediction;                 ///< study mode: the best point run on `predicted`
-    double noise_floor[3] = {0, 0, 0};     ///< max relative standard error of the seed mean, by quantity
+    StageValidation validation;            ///< the best point on the validation specimens ([validation])
+    double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< max relative standard error of the seed mean, by quantity
     /// The outcome of sand s (fitted or predicted) at the calibrated parameters; nullptr if none.
     [[nodiscard]] const SandOutcome* outcome(std::size_t sand) const;
+    /// Sand s on the validation specimens; nullptr if not validated.
+    [[nodiscard]] const SandOutcome* validation_outcome(std::size_t sand) const;
+    /// The sands a stage's result holds for: fitted, then predicted.
+    [[nodiscard]] std::vector<std::size_t> sands() const;
     [[nodiscard]] const Evaluation* evaluation_of(std::size_t sand) const;
 };
 
@@ -36,6 +43,7 @@ struct CalibrationResult {
     std::vector<CalibrationStage> stages;
     std::vector<Evaluation> history;
     int runs_used = 0, runs_executed = 0, runs_from_ledger = 0, runs_failed = 0;
+    int validation_runs = 0;               ///< runs of the validation specimens (apart from the budget)
     double wall_seconds = 0.0;
     std::vector<std::string> log;          ///< the milestone lines
 };
@@ -51,8 +59,10 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
                                   const std::function<void(const std::string&)>& log = {},
                                   const std::function<void(const Progress&)>& progress = {});
 
-/// The model for a problem: DEM (model = "dem") or the analytic stand-in, running `test`.
-std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, CubeTest test = CubeTest::compression);
+/// The model for a problem: DEM (model = "dem") or the analytic stand-in; it runs the
+/// direct-tension test too when `tension` or the problem fits the tensile strength, and is a
+/// ValidatedModel (fit and validation specimens) when the problem has [validation].
+std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, bool tension = false);
 
 /// FNV-1a of the problem description and the model fingerprint: the ledger's identity.
 std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model);

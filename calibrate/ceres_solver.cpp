@@ -15,7 +15,7 @@ class BatchedResiduals final : public ceres::CostFunction {
 public:
     BatchedResiduals(SolveContext& ctx, BestTracker& tracker, bool& out_of_budget)
         : ctx_(ctx), tracker_(tracker), out_of_budget_(out_of_budget) {
-        set_num_residuals(static_cast<int>(3 * ctx.sands.size()));
+        set_num_residuals(static_cast<int>(ctx.problem.fitted_quantities().size() * ctx.sands.size()));
         mutable_parameter_block_sizes()->push_back(static_cast<int>(ctx.space.size()));
     }
 

@@ -27,6 +27,7 @@ struct RunRequest {
     std::size_t sand = 0;         ///< index into the problem's sands
     std::uint64_t seed = 1;       ///< packing seed (common random numbers: the same for every material)
     exp::MaterialParams material;
+    CubeTest test = CubeTest::compression;  ///< which test of the specimen (the model must run it)
 };
 
 enum class RunStatus { ok, diverged, timeout, failed };
@@ -60,20 +61,24 @@ public:
     /// One test; thread-safe; never throws for a simulation that fails (the status says so).
     /// `timeout_s` <= 0: no time limit.
     [[nodiscard]] virtual RunOutcome run(const RunRequest& request, double timeout_s) const = 0;
-    /// Everything that defines the runs besides the material (specimens, test, code version):
-    /// part of every ledger key.
+    /// Everything that defines the model besides the material (specimens, the tests it can run,
+    /// code version): its identity (MPI ranks compare it, the problem fingerprint holds it).
     [[nodiscard]] virtual std::string fingerprint() const = 0;
+    /// Everything that defines the runs of `test` besides the material: part of every ledger
+    /// key of such a run. A model that cannot run `test` throws std::logic_error.
+    [[nodiscard]] virtual std::string run_fingerprint(CubeTest test) const = 0;
 };
 
-/// The real model for the named sands of the base cube config's dataset. `test` tension: the
-/// direct-tension test with the [tension] table of base.file (InputError if it is bad).
+/// The real model for the named sands of the base cube config's dataset: the compression test,
+/// and with `tension` also the direct-tension test with the [tension] table of base.file
+/// (InputError if it is bad).
 std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands,
-                                          CubeTest test = CubeTest::compression);
+                                          bool tension = false);
 
-/// The analytic stand-in (see analytic_model.cpp for its equations). `diverge_above_gpa` > 0
-/// makes every run with E* above it report a divergence (for the failure tests).
-std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise = 0.003, double diverge_above_gpa = 0.0,
-                                               CubeTest test = CubeTest::compression);
+/// The analytic stand-in (see analytic_model.cpp for its equations); it runs both tests.
+/// `diverge_above_gpa` > 0 makes every run with E* above it report a divergence (for the
+/// failure tests).
+std::unique_ptr<CubeModel> make_analytic_model(std::size_t sands, double noise = 0.003, double diverge_above_gpa = 0.0);
 
 /// The exact text of the material's fields (hex floats), for keys and fingerprints.
 std::string material_key(const exp::MaterialParams& m);

@@ -1,7 +1,8 @@
 // The real cube model: the base cube config's specimen and test, one cached packing per
-// (sand, seed), and exp::run_cube_test with the material of the request - or, for
-// CubeTest::tension, exp::run_tension_test of the same packing (as `gradem tension` runs it:
-// the base config's [tension] table, its strain rate rule, the compression test's stop rules).
+// (sand, seed), and exp::run_cube_test with the material of the request - or, for a
+// CubeTest::tension request (a model made with tension), exp::run_tension_test of the same
+// packing (as `gradem tension` runs it: the base config's [tension] table, its strain rate
+// rule, the compression test's stop rules).
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -40,8 +41,8 @@ void thin_curve(const exp::CubeTestResult& r, RunOutcome& out) {
 
 class DemCubeModel final : public CubeModel {
 public:
-    DemCubeModel(exp::CubeConfig base, const std::vector<std::string>& sands, CubeTest test) : base_(std::move(base)) {
-        if (test == CubeTest::tension) tension_ = exp::load_tension_config(base_);
+    DemCubeModel(exp::CubeConfig base, const std::vector<std::string>& sands, bool tension) : base_(std::move(base)) {
+        if (tension) tension_ = exp::load_tension_config(base_);
         names_ = sands;
         for (const std::string& name : sands) {
             exp::CubeConfig c = base_;
@@ -95,6 +96,8 @@ public:
         const auto it = packings_.find({q.sand, q.seed});
         if (it == packings_.end()) throw std::logic_error("DemCubeModel::run: packing not prepared");
         const exp::Packing& packing = it->second;
+        const bool tension = q.test == CubeTest::tension;
+        if (tension && !tension_) throw std::logic_error("DemCubeModel::run: a tension request to a model made without tension");
         const auto start = Clock::now();
         exp::ProgressCallback watchdog;
         if (timeout_s > 0.0)
@@ -104,7 +107,7 @@ public:
             };
         RunOutcome out;
         try {
-            const exp::CubeTestResult r = tension_ ? run_tension(packing, q.material, watchdog) : run_compression(packing, q.material, watchdog);
+            const exp::CubeTestResult r = tension ? run_tension(packing, q.material, watchdog) : run_compression(packing, q.material, watchdog);
             out.particles = static_cast<std::int64_t>(r.particles);
             out.bonds = static_cast<std::int64_t>(r.bonds);
             out.steps = r.test.steps;
@@ -116,7 +119,7 @@ public:
             if (r.diverged()) {
                 out.status = RunStatus::diverged;
                 out.reason = r.test.stop_reason;
-            } else if (tension_ && std::isfinite(out.peak_pa) && out.peak_pa > 0.0) {
+            } else if (tension && std::isfinite(out.peak_pa) && out.peak_pa > 0.0) {
                 out.status = RunStatus::ok;  // σt is what the tension test is run for; its modulus may be NaN
                 if (r.macro.status != lab::ReductionStatus::ok) out.reason = "tension curve partly reduced: " + r.macro.message;
             } else if (r.macro.status != lab::ReductionStatus::ok || !std::isfinite(out.modulus_pa)) {
@@ -136,7 +139,19 @@ public:
         return out;
     }
 
-    std::string fingerprint() const override {
+    std::string fingerprint() const override { return tension_ ? run_fingerprint(CubeTest::tension) : compression_fingerprint(); }
+
+    std::string run_fingerprint(CubeTest test) const override {
+        if (test == CubeTest::compression) return compression_fingerprint();
+        if (!tension_) throw std::logic_error("DemCubeModel: no tension test (made without it)");
+        std::ostringstream f;
+        f << compression_fingerprint() << std::hexfloat << "; direct tension v1 grip " << tension_->spec.grip_depth_fraction
+          << " auto peak strain " << tension_->auto_peak_strain;
+        return f.str();
+    }
+
+private:
+    std::string compression_fingerprint() const {
         std::ostringstream f;
         // The engine's version (v2: one time step per step, world_step.cpp); bump whenever the
         // engine's results change on purpose, so the ledger never serves a run of another engine.
@@ -156,12 +171,9 @@ public:
           << "; ramp " << l.ramp_strain << "; stop " << l.stop_fraction << "; max " << l.max_strain << "; record "
           << l.record_interval << "; gauge " << base_.test.gauge_length_fraction << " " << base_.test.slab_fraction << " "
           << base_.test.core_fraction << "; settle " << base_.test.settle_ratio << " " << base_.test.max_settle_steps;
-        if (tension_)
-            f << "; direct tension v1 grip " << tension_->spec.grip_depth_fraction << " auto peak strain " << tension_->auto_peak_strain;
         return f.str();
     }
 
-private:
     exp::CubeTestResult run_compression(const exp::Packing& packing, const exp::MaterialParams& material,
                                         const exp::ProgressCallback& watchdog) const {
         exp::CubeTestSpec spec = base_.test;
@@ -193,8 +205,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands, CubeTest test) {
-    return std::make_unique<DemCubeModel>(base, sands, test);
+std::unique_ptr<CubeModel> make_dem_model(const exp::CubeConfig& base, const std::vector<std::string>& sands, bool tension) {
+    return std::make_unique<DemCubeModel>(base, sands, tension);
 }
 
 }  // namespace gradem::cal

@@ -9,28 +9,48 @@ namespace gradem::cal {
 namespace {
 
 double output_of(const RunOutcome& r, Quantity q) {
-    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak ? r.peak_pa : r.strain_at_peak;
+    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak || q == Quantity::tension ? r.peak_pa : r.strain_at_peak;
+}
+
+/// Seed mean and sample standard deviation of q over the runs (NaN: none, or one for the std).
+void mean_and_std(const std::vector<const RunOutcome*>& runs, Quantity q, double& mean, double& std) {
+    const double n = static_cast<double>(runs.size());
+    double sum = 0.0, sq = 0.0;
+    for (const RunOutcome* r : runs) sum += output_of(*r, q);
+    mean = n > 0 ? sum / n : std::nan("");
+    for (const RunOutcome* r : runs) sq += (output_of(*r, q) - mean) * (output_of(*r, q) - mean);
+    std = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
 }
 
 }  // namespace
 
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
-                     std::string model_fingerprint, std::function<void(const Progress&)> progress)
-    : problem_(problem), space_(space), executor_(executor), ledger_(ledger), fingerprint_(std::move(model_fingerprint)),
-      progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {}
+                     const CubeModel& model, std::function<void(const Progress&)> progress, CubeTest primary)
+    : problem_(problem), space_(space), executor_(executor), ledger_(ledger), primary_(primary),
+      progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {
+    for (CubeTest t : tests()) fingerprint_[static_cast<int>(t)] = model.run_fingerprint(t);
+}
 
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
-                     std::string model_fingerprint, std::function<void(const Progress&)> progress)
+                     std::function<void(const Progress&)> progress, CubeTest primary)
     : problem_(problem), space_(space), own_executor_(std::make_unique<ThreadExecutor>(model, problem.workers)),
-      executor_(*own_executor_), ledger_(ledger), fingerprint_(std::move(model_fingerprint)), progress_(std::move(progress)),
-      start_(std::chrono::steady_clock::now()) {}
+      executor_(*own_executor_), ledger_(ledger), primary_(primary), progress_(std::move(progress)),
+      start_(std::chrono::steady_clock::now()) {
+    for (CubeTest t : tests()) fingerprint_[static_cast<int>(t)] = model.run_fingerprint(t);
+}
+
+std::vector<CubeTest> Evaluator::tests() const {
+    if (primary_ == CubeTest::compression && problem_.tension.fitted()) return {CubeTest::compression, CubeTest::tension};
+    return {primary_};
+}
 
 double Evaluator::seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-std::string Evaluator::run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed) const {
-    return common::fnv1a_hex(fingerprint_ + "|sand " + problem_.sands[sand] + "|seed " + std::to_string(seed) + "|" + material_key(m));
+std::string Evaluator::run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed, CubeTest test) const {
+    return common::fnv1a_hex(fingerprint_[static_cast<int>(test)] + "|sand " + problem_.sands[sand] + "|seed " + std::to_string(seed) +
+                             "|" + material_key(m));
 }
 
 std::string Evaluator::parameters_json(const std::vector<double>& values) const {
@@ -45,32 +65,28 @@ int Evaluator::runs_needed(const std::vector<std::vector<double>>& points, const
         const exp::MaterialParams m = space_.material(p);
         for (std::size_t s : sands)
             for (std::uint64_t seed : problem_.seeds)
-                if (const std::string key = run_key(m, s, seed); !used_.count(key)) fresh.insert(key);
+                for (CubeTest t : tests())
+                    if (const std::string key = run_key(m, s, seed, t); !used_.count(key)) fresh.insert(key);
     }
     return static_cast<int>(fresh.size());
 }
 
-SandOutcome Evaluator::summarise(std::size_t sand, const std::vector<RunOutcome>& runs) const {
+SandOutcome Evaluator::summarise(std::size_t sand, const std::vector<RunOutcome>& runs,
+                                 const std::vector<RunOutcome>& tension_runs) const {
     SandOutcome s;
     s.sand = sand;
-    std::vector<const RunOutcome*> good;
-    for (const RunOutcome& r : runs) {
-        if (r.ok()) good.push_back(&r);
-        else if (s.failed++ == 0) s.failure = std::string(to_string(r.status)) + ": " + r.reason;
-    }
-    s.ok = static_cast<int>(good.size());
-    const double n = static_cast<double>(good.size());
-    for (Quantity q : kQuantities) {
-        const int k = static_cast<int>(q);
-        double sum = 0.0, sq = 0.0;
-        for (const RunOutcome* r : good) sum += output_of(*r, q);
-        s.mean[k] = n > 0 ? sum / n : std::nan("");
-        for (const RunOutcome* r : good) {
-            const double d = output_of(*r, q) - s.mean[k];
-            sq += d * d;
+    std::vector<const RunOutcome*> good, good_tension;
+    for (const auto& [list, into] : {std::pair{&runs, &good}, std::pair{&tension_runs, &good_tension}})
+        for (const RunOutcome& r : *list) {
+            if (r.ok()) into->push_back(&r);
+            else if (s.failed++ == 0)
+                s.failure = std::string(list == &tension_runs ? "tension test " : "") + to_string(r.status) + ": " + r.reason;
         }
-        s.std[k] = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
-    }
+    s.ok = static_cast<int>(good.size());
+    s.tension_ok = static_cast<int>(good_tension.size());
+    for (Quantity q : kQuantities) mean_and_std(good, q, s.mean[static_cast<int>(q)], s.std[static_cast<int>(q)]);
+    const int t = static_cast<int>(Quantity::tension);
+    mean_and_std(good_tension, Quantity::tension, s.mean[t], s.std[t]);
     double nu = 0.0;
     int n_nu = 0;
     for (const RunOutcome* r : good)
@@ -89,6 +105,7 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
     struct Job {
         std::size_t point, sand;
         std::uint64_t seed;
+        CubeTest test;
         exp::MaterialParams material;
         std::string key;
         RunOutcome outcome;
@@ -98,7 +115,8 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
     for (std::size_t p = 0; p < points.size(); ++p) {
         const exp::MaterialParams m = space_.material(points[p]);
         for (std::size_t s : sands)
-            for (std::uint64_t seed : problem_.seeds) jobs.push_back({p, s, seed, m, run_key(m, s, seed), {}, false});
+            for (std::uint64_t seed : problem_.seeds)
+                for (CubeTest t : tests()) jobs.push_back({p, s, seed, t, m, run_key(m, s, seed, t), {}, false});
     }
     std::vector<std::size_t> queue;
     std::set<std::string> queued;
@@ -115,7 +133,7 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
     //    back one run at a time).
     const int evaluations = static_cast<int>(history_.size() + points.size());
     std::vector<RunRequest> requests;
-    for (std::size_t j : queue) requests.push_back({jobs[j].sand, jobs[j].seed, jobs[j].material});
+    for (std::size_t j : queue) requests.push_back({jobs[j].sand, jobs[j].seed, jobs[j].material, jobs[j].test});
     executor_.run(requests, problem_.timeout_s, [&](std::size_t k, const RunOutcome& outcome, const RunPlace& place) {
         Job& job = jobs[queue[k]];
         job.outcome = outcome;
@@ -140,15 +158,16 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
         e.values = points[p];
         e.label = label;
         for (std::size_t s : sands) {
-            std::vector<RunOutcome> runs;
+            std::vector<RunOutcome> runs, tension_runs;
             for (const Job& job : jobs)
-                if (job.point == p && job.sand == s) runs.push_back(job.outcome);
-            e.sands.push_back(summarise(s, runs));
+                if (job.point == p && job.sand == s) (job.test == primary_ ? runs : tension_runs).push_back(job.outcome);
+            e.sands.push_back(summarise(s, runs, tension_runs));
             if (e.sands.back().failed && !e.failed) {
                 e.failed = true;
                 e.failure = problem_.sands[s] + ": " + e.sands.back().failure;
             }
             e.runs.insert(e.runs.end(), runs.begin(), runs.end());
+            e.tension_runs.insert(e.tension_runs.end(), tension_runs.begin(), tension_runs.end());
         }
         e.runs_used = runs_used();
         e.seconds = seconds();

@@ -3,6 +3,8 @@
 // numbers: the same packings for every point), served from the ledger when the identical run is
 // there, otherwise handed to the run executor (threads or MPI ranks) and recorded at once. The budget counts distinct
 // runs of this calibration, from the ledger or not, so a resumed calibration takes the same path.
+// A problem that fits the direct-tension strength adds, per compression run, the tension test of
+// the same packing and material (its own ledger key): both go to the executor in one batch.
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -19,21 +21,26 @@
 
 namespace gradem::cal {
 
-/// A sand's outputs over the seeds: mean and sample standard deviation, by Quantity.
+/// A sand's outputs over the seeds: mean and sample standard deviation, by Quantity (the
+/// tension slot holds the tension tests' peak σt [Pa], NaN when none was run).
 struct SandOutcome {
     std::size_t sand = 0;
-    double mean[3] = {0, 0, 0}, std[3] = {0, 0, 0};
+    double mean[kQuantityCount] = {0, 0, 0, 0}, std[kQuantityCount] = {0, 0, 0, 0};
     double poisson = 0.0;
     int ok = 0, failed = 0;
+    int tension_ok = 0;   ///< successful tension tests (their failures count in `failed`)
     std::string failure;  ///< the first failing run's status and reason
     [[nodiscard]] double value(Quantity q) const { return mean[static_cast<int>(q)]; }
+    /// Runs behind the mean of q (for standard errors).
+    [[nodiscard]] int count(Quantity q) const { return q == Quantity::tension ? tension_ok : ok; }
 };
 
 struct Evaluation {
     int index = 0;                     ///< 1, 2, ... in the order requested
     std::vector<double> values;        ///< free parameters, config units
     std::vector<SandOutcome> sands;    ///< one per evaluated sand
-    std::vector<RunOutcome> runs;      ///< sand-major, then seed
+    std::vector<RunOutcome> runs;      ///< the primary test's, sand-major, then seed
+    std::vector<RunOutcome> tension_runs;  ///< the companion tension tests, same order (empty: none)
     bool failed = false;
     std::string failure;
     std::string label;                 ///< what the solver asked for ("start", "rescaled", "fd", ...)
@@ -55,11 +62,16 @@ struct Progress {
 
 class Evaluator {
 public:
+    /// The runs on `executor`; `model` is the one it runs (its run fingerprints key the ledger).
+    /// `primary`: the test whose outcomes fill an Evaluation's runs and the three compression
+    /// quantities' slots (the study runs tension alone so); with compression and a problem that
+    /// fits tension, every run has its tension companion.
     Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
-              std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
+              const CubeModel& model, std::function<void(const Progress&)> progress = {},
+              CubeTest primary = CubeTest::compression);
     /// The runs on problem.workers threads of this process (`model` already prepared).
     Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
-              std::string model_fingerprint, std::function<void(const Progress&)> progress = {});
+              std::function<void(const Progress&)> progress = {}, CubeTest primary = CubeTest::compression);
 
     /// Evaluates every point on `sands` (indices into problem.sands); all their runs go to the
     /// executor together (a batch of 20 finite-difference points fills 20 workers). Throws BudgetExhausted (before running anything) when the new
@@ -84,9 +96,11 @@ public:
     [[nodiscard]] double seconds() const;
 
 private:
-    std::string run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed) const;
+    /// The tests each (point, sand, seed) runs: the primary one, then its tension companion.
+    [[nodiscard]] std::vector<CubeTest> tests() const;
+    std::string run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed, CubeTest test) const;
     std::string parameters_json(const std::vector<double>& values) const;
-    SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs) const;
+    SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs, const std::vector<RunOutcome>& tension_runs) const;
     void report(int evaluations);
 
     const CalibrationProblem& problem_;
@@ -94,7 +108,8 @@ private:
     std::unique_ptr<RunExecutor> own_executor_;  ///< the thread executor of the second constructor
     RunExecutor& executor_;
     Ledger& ledger_;
-    std::string fingerprint_;
+    CubeTest primary_;
+    std::string fingerprint_[2];  ///< run fingerprints by CubeTest (the tension one only when it runs)
     std::function<void(const Progress&)> progress_;
     std::set<std::string> used_;
     int executed_ = 0, served_ = 0, failed_ = 0, reserve_ = 0;

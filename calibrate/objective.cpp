@@ -7,7 +7,7 @@ namespace gradem::cal {
 std::vector<double> residuals(const Evaluation& e, const CalibrationProblem& problem) {
     std::vector<double> r;
     for (const SandOutcome& s : e.sands)
-        for (Quantity q : kQuantities) {
+        for (Quantity q : problem.fitted_quantities()) {
             const double w = problem.weights.of(q);
             const double lab = target_of(problem.targets[s.sand], q).mean;
             const double sim = s.value(q);
@@ -24,19 +24,20 @@ double objective(const std::vector<double>& r) {
 
 Evaluation rescaled(const Evaluation& e, double alpha, double beta) {
     Evaluation out = e;
-    const double factor[3] = {alpha, beta, beta / alpha};
+    const double factor[kQuantityCount] = {alpha, beta, beta / alpha, beta};  // by Quantity: E, σ, ε, σt
     for (SandOutcome& s : out.sands)
-        for (int k = 0; k < 3; ++k) {
+        for (int k = 0; k < kQuantityCount; ++k) {
             s.mean[k] *= factor[k];
             s.std[k] *= factor[k];
         }
-    for (RunOutcome& r : out.runs) {
-        r.modulus_pa *= alpha;
-        r.peak_pa *= beta;
-        r.strain_at_peak *= beta / alpha;
-        for (double& x : r.curve_strain) x *= beta / alpha;
-        for (double& x : r.curve_stress_pa) x *= beta;
-    }
+    for (auto* runs : {&out.runs, &out.tension_runs})
+        for (RunOutcome& r : *runs) {
+            r.modulus_pa *= alpha;
+            r.peak_pa *= beta;
+            r.strain_at_peak *= beta / alpha;
+            for (double& x : r.curve_strain) x *= beta / alpha;
+            for (double& x : r.curve_stress_pa) x *= beta;
+        }
     return out;
 }
 
@@ -56,6 +57,11 @@ Scales best_scales(const Evaluation& e, const CalibrationProblem& problem, bool 
         ab += -wP;
         ra += -wE * dE + wP * dP;
         rb += -wS * dS - wP * dP;
+        if (problem.tension.fitted()) {  // row wT (b + dT): σt scales with the strengths alone
+            const double dT = std::log(s.value(Quantity::tension) / t.tension.mean), wT = std::pow(problem.weights.tension, 2);
+            bb += wT;
+            rb += -wT * dT;
+        }
     }
     Scales sc;
     if (stiffness && strength) {

@@ -4,9 +4,10 @@
 //                                                gets r = w_q · penalty for every target
 //   J          = Σ r²
 // Homogeneity: multiplying every modulus by α and every strength by β changes the outputs to
-//   E' = α E,  σ' = β σ,  ε' = (β/α) ε
+//   E' = α E,  σ' = β σ,  ε' = (β/α) ε,  σt' = β σt (the direct-tension strength)
 // so the best α, β for a run are the weighted least-squares solution in logs:
 //   min Σ_s [w_E (ln α + ln E_s/E_lab)]² + [w_σ (ln β + ln σ_s/σ_lab)]² + [w_ε (ln β − ln α + ln ε_s/ε_lab)]²
+//           (+ [w_t (ln β + ln σt_s/σt_target)]² when the problem fits tension)
 #include <vector>
 
 #include "calibrate/evaluator.hpp"

@@ -2,10 +2,12 @@
 
 #include "calibrate/cube_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -21,7 +23,7 @@ namespace fs = std::filesystem;
 using common::InputError;
 using namespace common::toml_io;
 
-const std::vector<std::string> kTables = {"calibration", "targets", "parameters", "solver", "run", "output"};
+const std::vector<std::string> kTables = {"calibration", "targets", "parameters", "solver", "run", "validation", "output"};
 const std::vector<std::string> kDefaultFree = {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"};
 
 std::vector<std::string> read_strings(Section& s, const char* key, std::vector<std::string> fallback) {
@@ -245,15 +247,63 @@ void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& 
         throw InputError(ctx.file, 0, "the start parameters give an invalid material: " + *why);
 }
 
+/// [targets] tension*: the direct-tension target's keys (read into p.tension, checked here).
+void read_tension_target(Context& ctx, Section& s, CalibrationProblem& p) {
+    TensionTarget& t = p.tension;
+    std::string source = to_string(t.source);
+    s.text("tension", source);
+    s.real("tension_ratio", t.ratio);
+    s.real("tension_ratio_low", t.ratio_low);
+    s.real("tension_ratio_high", t.ratio_high);
+    s.real("tension_tolerance", t.tolerance);
+    s.real("tension_weight", p.weights.tension);
+    s.text("tension_basis", t.basis);
+    auto line = [&](const char* key) { return ctx.keys[std::string("targets.") + key].line; };
+    if (source == "none") t.source = TensionSource::none;
+    else if (source == "lab") t.source = TensionSource::lab;
+    else if (source == "assumed_ratio") t.source = TensionSource::assumed_ratio;
+    else throw InputError(ctx.file, line("tension"), "key 'targets.tension' = \"" + source + "\": expected one of none, lab, assumed_ratio");
+    if (!t.fitted()) return;
+    if (!(t.ratio > 1.0))
+        throw InputError(ctx.file, line("tension_ratio"), "key 'targets.tension_ratio' = " + show(t.ratio) + " violates > 1 (σc/σt)");
+    if (!(t.ratio_low > 1.0 && t.ratio_low <= t.ratio && t.ratio <= t.ratio_high))
+        throw InputError(ctx.file, line(t.ratio_low > 1.0 && t.ratio_low <= t.ratio ? "tension_ratio_high" : "tension_ratio_low"),
+                         "keys 'targets.tension_ratio_low' = " + show(t.ratio_low) + ", 'tension_ratio' = " + show(t.ratio) +
+                             ", 'tension_ratio_high' = " + show(t.ratio_high) + " violate 1 < low <= ratio <= high");
+    if (!(t.tolerance > 0.0 && t.tolerance < 1.0))
+        throw InputError(ctx.file, line("tension_tolerance"), "key 'targets.tension_tolerance' = " + show(t.tolerance) + " violates in (0, 1)");
+    if (t.assumed() && t.basis.empty())
+        throw InputError(ctx.file, line("tension"),
+                         "key 'targets.tension_basis' is required with tension = \"assumed_ratio\": say where the assumed σc/σt comes from");
+}
+
+/// The tension targets of every sand, once the lab's compression targets are read.
+void set_tension_targets(Context& ctx, CalibrationProblem& p) {
+    if (p.tension.assumed())
+        for (SandTargets& t : p.targets) t.tension = {t.peak.mean / p.tension.ratio, std::nan(""), 0};
+    if (p.tension.source != TensionSource::lab) return;
+    const auto tensile = read_lab_tensile_targets(p.lab_results, p.sands);
+    for (std::size_t s = 0; s < p.targets.size(); ++s) {
+        if (!tensile[s])
+            throw InputError(ctx.file, ctx.keys["targets.tension"].line,
+                             "key 'targets.tension' = \"lab\": sand '" + p.sands[s] + "' has no tensile_strength_mpa in " +
+                                 p.lab_results.string() +
+                                 " (add its splitting or flexural tests to the dataset, or use tension = \"assumed_ratio\")");
+        p.targets[s].tension = *tensile[s];
+    }
+}
+
 void read_targets(Context& ctx, const toml::table& root, CalibrationProblem& p) {
     Section s(ctx, root, "targets");
     s.path("lab_results", p.lab_results);
     s.real("modulus_weight", p.weights.modulus);
     s.real("peak_weight", p.weights.peak);
     s.real("strain_weight", p.weights.strain);
+    read_tension_target(ctx, s, p);
     s.finish();
     for (const auto& [key, w] : {std::pair<const char*, double>{"modulus_weight", p.weights.modulus},
-                                 {"peak_weight", p.weights.peak}, {"strain_weight", p.weights.strain}})
+                                 {"peak_weight", p.weights.peak}, {"strain_weight", p.weights.strain},
+                                 {"tension_weight", p.weights.tension}})
         if (!(w >= 0.0 && std::isfinite(w)))
             throw InputError(ctx.file, ctx.keys[std::string("targets.") + key].line, std::string("key 'targets.") + key + "' must be >= 0");
     if (p.weights.modulus + p.weights.peak + p.weights.strain <= 0.0)
@@ -264,6 +314,46 @@ void read_targets(Context& ctx, const toml::table& root, CalibrationProblem& p) 
         throw InputError(ctx.file, ctx.keys["targets.lab_results"].line,
                          "key 'targets.lab_results': " + p.lab_results.string() + " not found; run `gradem lab <dataset> --out DIR` first");
     p.targets = read_lab_targets(p.lab_results, p.sands, &p.representative, &p.lab_note);
+    set_tension_targets(ctx, p);
+}
+
+/// The largest grain a specimen of the problem can hold [m]: the size rule's cut-off, or the
+/// coarsest sieve of the sands' gradations when there is none (after the rule's scale).
+double largest_grain(const CalibrationProblem& p) {
+    const exp::SizeRule& rule = p.base.specimen.size_rule;
+    if (rule.max_diameter > 0.0) return rule.max_diameter * rule.scale;
+    double largest = 0.0;
+    for (const std::string& sand : p.sands) {
+        exp::CubeConfig c = p.base;
+        c.sand = sand;
+        const lab::GradationCurve curve = exp::load_gradation(c);
+        if (!curve.size_m.empty()) largest = std::max(largest, curve.size_m.back());
+    }
+    return largest * rule.scale;
+}
+
+void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    if (!root.get("validation")) return;
+    Section s(ctx, root, "validation");
+    ValidationSpec& v = p.validation;
+    v.edge = p.base.specimen.genesis.edge;
+    s.real("edge_mm", v.edge, 1e-3);
+    v.seeds = read_seeds(s, "seeds", {});
+    s.finish();
+    const int edge_line = ctx.keys["validation.edge_mm"].line, seeds_line = ctx.keys["validation.seeds"].line;
+    if (v.seeds.empty())
+        throw InputError(ctx.file, seeds_line, "key 'validation.seeds' is required and not empty: the packing seeds of the validation specimens");
+    for (std::uint64_t seed : v.seeds)
+        if (std::find(p.seeds.begin(), p.seeds.end(), seed) != p.seeds.end())
+            throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
+                                                       " is also a fitted seed (calibration.seeds): validation specimens must be unseen");
+    const double grain = largest_grain(p);
+    if (!(v.edge >= 3.0 * grain))
+        throw InputError(ctx.file, edge_line, "key 'validation.edge_mm' = " + show(v.edge * 1e3) + " violates >= 3 x the largest grain (" +
+                                                  show(grain * 1e3) + " mm), i.e. >= " + show(3e3 * grain) + " mm");
+    exp::SpecimenSpec spec = p.base.specimen;
+    spec.genesis.edge = v.edge;
+    if (const auto why = spec.invalid_reason()) throw InputError(ctx.file, edge_line, "key 'validation.edge_mm': " + *why);
 }
 
 void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
@@ -325,6 +415,32 @@ TargetStat read_stat(const nlohmann::json& sand, const char* key, double to_si, 
     return t;
 }
 
+/// The lab results file as JSON, with its 'sands' array checked.
+nlohmann::json read_lab_json(const fs::path& json_file) {
+    std::ifstream in(json_file);
+    if (!in) throw InputError(json_file.string(), 0, "cannot read the lab results");
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError(json_file.string(), 0, std::string("not valid JSON: ") + e.what());
+    }
+    if (!j.is_object() || !j.contains("sands") || !j["sands"].is_array())
+        throw InputError(json_file.string(), 0, "no 'sands' array: expected the lab_results.json written by `gradem lab`");
+    return j;
+}
+
+/// The entry of sand `name` in the lab results; InputError listing the sands there otherwise.
+const nlohmann::json& find_lab_sand(const nlohmann::json& j, const fs::path& json_file, const std::string& name) {
+    std::string names;
+    for (const auto& s : j["sands"]) {
+        const std::string n = s.value("name", "");
+        if (n == name) return s;
+        names += (names.empty() ? "'" : ", '") + n + "'";
+    }
+    throw InputError(json_file.string(), 0, "sand '" + name + "' is not in the lab results (sands: " + names + ")");
+}
+
 }  // namespace
 
 const char* to_string(Mode m) {
@@ -345,43 +461,54 @@ const char* to_string(Method m) {
 }
 
 const char* to_string(Quantity q) {
-    return q == Quantity::modulus ? "modulus" : q == Quantity::peak ? "peak_stress" : "strain_at_peak";
+    switch (q) {
+        case Quantity::modulus: return "modulus";
+        case Quantity::peak: return "peak_stress";
+        case Quantity::strain: return "strain_at_peak";
+        case Quantity::tension: return "tensile_strength";
+    }
+    return "?";
+}
+
+const char* to_string(TensionSource s) {
+    return s == TensionSource::lab ? "lab" : s == TensionSource::assumed_ratio ? "assumed_ratio" : "none";
 }
 
 const TargetStat& target_of(const SandTargets& t, Quantity q) {
-    return q == Quantity::modulus ? t.modulus : q == Quantity::peak ? t.peak : t.strain;
+    return q == Quantity::modulus ? t.modulus : q == Quantity::peak ? t.peak : q == Quantity::strain ? t.strain : t.tension;
+}
+
+std::vector<Quantity> CalibrationProblem::fitted_quantities() const {
+    std::vector<Quantity> out(std::begin(kQuantities), std::end(kQuantities));
+    if (tension.fitted()) out.push_back(Quantity::tension);
+    return out;
+}
+
+std::vector<std::optional<TargetStat>> read_lab_tensile_targets(const fs::path& json_file, const std::vector<std::string>& sands) {
+    const nlohmann::json j = read_lab_json(json_file);
+    std::vector<std::optional<TargetStat>> out;
+    for (const std::string& name : sands) {
+        const nlohmann::json& sand = find_lab_sand(j, json_file, name);
+        if (sand.contains("tensile_strength_mpa")) out.push_back(read_stat(sand, "tensile_strength_mpa", 1e6, json_file.string(), name));
+        else out.push_back(std::nullopt);
+    }
+    return out;
 }
 
 std::vector<SandTargets> read_lab_targets(const fs::path& json_file, const std::vector<std::string>& sands,
                                           bool* representative, std::string* note) {
-    std::ifstream in(json_file);
-    if (!in) throw InputError(json_file.string(), 0, "cannot read the lab results");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(json_file.string(), 0, std::string("not valid JSON: ") + e.what());
-    }
-    if (!j.is_object() || !j.contains("sands") || !j["sands"].is_array())
-        throw InputError(json_file.string(), 0, "no 'sands' array: expected the lab_results.json written by `gradem lab`");
+    const nlohmann::json j = read_lab_json(json_file);
     if (representative) *representative = j.contains("representative_data") && j["representative_data"].is_boolean() &&
                                           j["representative_data"].get<bool>();
     if (note && j.contains("note") && j["note"].is_string()) *note = j["note"].get<std::string>();
     std::vector<SandTargets> out;
     for (const std::string& name : sands) {
-        const nlohmann::json* found = nullptr;
-        std::string names;
-        for (const auto& s : j["sands"]) {
-            const std::string n = s.value("name", "");
-            names += (names.empty() ? "'" : ", '") + n + "'";
-            if (n == name) found = &s;
-        }
-        if (!found) throw InputError(json_file.string(), 0, "sand '" + name + "' is not in the lab results (sands: " + names + ")");
+        const nlohmann::json& found = find_lab_sand(j, json_file, name);
         SandTargets t;
         t.name = name;
-        t.modulus = read_stat(*found, "chord_modulus_mpa", 1e6, json_file.string(), name);
-        t.peak = read_stat(*found, "peak_stress_mpa", 1e6, json_file.string(), name);
-        t.strain = read_stat(*found, "strain_at_peak", 1.0, json_file.string(), name);
+        t.modulus = read_stat(found, "chord_modulus_mpa", 1e6, json_file.string(), name);
+        t.peak = read_stat(found, "peak_stress_mpa", 1e6, json_file.string(), name);
+        t.strain = read_stat(found, "strain_at_peak", 1.0, json_file.string(), name);
         out.push_back(t);
     }
     return out;
@@ -398,10 +525,13 @@ std::string CalibrationProblem::describe() const {
         d << "parameter " << q.name << " = " << (q.free ? "free" : "fixed") << " start " << exact(q.start) << " bounds "
           << exact(q.lower) << " " << exact(q.upper) << " " << (q.log_scale ? "log" : "linear") << "\n";
     for (const auto& t : targets)
-        for (Quantity q : kQuantities)
+        for (Quantity q : fitted_quantities())
             d << "target " << t.name << " " << to_string(q) << " = " << exact(target_of(t, q).mean) << " +- "
               << exact(target_of(t, q).std) << "\n";
     d << "weights = " << exact(weights.modulus) << " " << exact(weights.peak) << " " << exact(weights.strain) << "\n";
+    if (tension.fitted())  // only then: the other problems keep their fingerprints
+        d << "tension " << to_string(tension.source) << " weight " << exact(weights.tension) << " ratio " << exact(tension.ratio)
+          << "\n";
     d << "solver = " << to_string(solver.method) << " tolerance " << exact(solver.tolerance) << " fd_step "
       << exact(solver.fd_step) << " homogeneity " << exact(solver.homogeneity_tolerance) << " penalty "
       << exact(solver.penalty) << " seed " << solver.seed << "\ntimeout_s = " << exact(timeout_s) << "\n";
@@ -418,8 +548,18 @@ CalibrationProblem load_calibration_problem(const fs::path& toml_file) {
     read_parameters(ctx, root, p);
     read_targets(ctx, root, p);
     read_solver(ctx, root, p);
+    read_validation(ctx, root, p);
     read_output(ctx, root, p, toml_file.stem().string());
     return p;
+}
+
+CalibrationProblem validation_problem(const CalibrationProblem& problem) {
+    CalibrationProblem v = problem;
+    v.base.specimen.genesis.edge = problem.validation.edge;
+    v.seeds = problem.validation.seeds;
+    v.validation = {};
+    v.solver.max_runs = 1 << 30;  // the validation runs what it asks for; they are counted apart
+    return v;
 }
 
 }  // namespace gradem::cal

@@ -5,17 +5,23 @@
 //                 mode = "joint" | "per_sand" | "study", sands, calibrate_on, seeds, model,
 //                 bond_model (overrides the base's [material] model; kept in base.material),
 //                 edge_mm, paste_diameter_mm (override the base's cube edge and paste size)
-//   [targets]     lab_results (the lab_results.json of `gradem lab`), modulus/peak/strain weights
+//   [targets]     lab_results (the lab_results.json of `gradem lab`), modulus/peak/strain weights,
+//                 tension = "none" | "lab" | "assumed_ratio" with tension_ratio, tension_ratio_low/high,
+//                 tension_tolerance, tension_weight, tension_basis (the direct-tension target)
 //   [parameters.<name>]  free, start, lower, upper, scale = "log" | "linear"
 //   [solver]      method, max_runs, tolerance, fd_step, homogeneity_tolerance, penalty, seed
 //   [run]         workers, timeout_s
+//   [validation]  edge_mm, seeds (specimens the fit never saw, run at its result)
 //   [output]      dir, ledger
 //
 // Targets are never typed in: they are the per-sand mean and standard deviation of the chord
-// modulus, peak stress and strain at peak in the lab results file. Every error is a
+// modulus, peak stress and strain at peak in the lab results file, and for the direct-tension
+// strength either the lab's (tensile tests reduced to a direct-tension equivalent) or the lab's
+// peak stress over an assumed σc/σt, marked as assumed wherever it is shown. Every error is a
 // common::InputError naming the file, line and key.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,17 +44,39 @@ struct TargetStat {
 struct SandTargets {
     std::string name;
     TargetStat modulus, peak, strain;  ///< chord modulus [Pa], peak stress [Pa], strain at peak [-]
+    TargetStat tension;                ///< direct-tension strength σt [Pa] (n = 0: assumed or not fitted)
 };
 
-/// The three targets of a sand, in this order everywhere (residual vectors, tables).
-enum class Quantity { modulus, peak, strain };
+/// A sand's targets, in this order everywhere (residual vectors, tables): the compression
+/// test's three, then the direct-tension strength when the problem fits it.
+enum class Quantity { modulus, peak, strain, tension };
 inline constexpr Quantity kQuantities[] = {Quantity::modulus, Quantity::peak, Quantity::strain};
+inline constexpr int kQuantityCount = 4;  ///< slots of per-quantity arrays (the tension one may stay empty)
 const char* to_string(Quantity q);
 const TargetStat& target_of(const SandTargets& t, Quantity q);
 
+/// Where the direct-tension target comes from ([targets] tension).
+enum class TensionSource { none, lab, assumed_ratio };
+const char* to_string(TensionSource s);
+
+/// The direct-tension target: the lab's strength (lab_results.json `tensile_strength_mpa`,
+/// splitting or flexural tests converted to direct tension by `gradem lab`), or σt = σc,lab / ratio
+/// with an assumed ratio. Met: lab, |σt_sim/σt_lab − 1| <= tolerance; assumed, the simulated
+/// ratio σc,sim/σt,sim within [ratio_low, ratio_high].
+struct TensionTarget {
+    TensionSource source = TensionSource::none;
+    double ratio = 10.0, ratio_low = 8.0, ratio_high = 12.0;  ///< σc/σt assumed, and the band that counts as met [-]
+    double tolerance = 0.10;                                  ///< lab source: relative error that counts as met [-]
+    std::string basis;                                        ///< where the assumed ratio comes from (shown as such)
+    [[nodiscard]] bool fitted() const { return source != TensionSource::none; }
+    [[nodiscard]] bool assumed() const { return source == TensionSource::assumed_ratio; }
+};
+
 struct Weights {
-    double modulus = 1.0, peak = 1.0, strain = 0.2;
-    [[nodiscard]] double of(Quantity q) const { return q == Quantity::modulus ? modulus : q == Quantity::peak ? peak : strain; }
+    double modulus = 1.0, peak = 1.0, strain = 0.2, tension = 1.0;
+    [[nodiscard]] double of(Quantity q) const {
+        return q == Quantity::modulus ? modulus : q == Quantity::peak ? peak : q == Quantity::strain ? strain : tension;
+    }
 };
 
 struct SolverSettings {
@@ -59,6 +87,15 @@ struct SolverSettings {
     double homogeneity_tolerance = 0.05;  ///< max |predicted/actual − 1| of E and peak for the scaling path
     double penalty = 3.0;                 ///< residual of every target of a failed evaluation
     std::uint64_t seed = 1;               ///< for the stochastic global method (CRS2)
+};
+
+/// The validation specimens ([validation]): after the fit, its result is run on cubes of another
+/// edge and on packing seeds the fit never saw; their errors are reported first. Not part of
+/// the problem's identity (describe()): changing them keeps the ledger's fitted runs.
+struct ValidationSpec {
+    double edge = 0.0;                 ///< [m] cube edge of the validation specimens (0: the fit's)
+    std::vector<std::uint64_t> seeds;  ///< their packing seeds (empty: no validation)
+    [[nodiscard]] bool enabled() const { return !seeds.empty(); }
 };
 
 struct CalibrationProblem {
@@ -73,6 +110,8 @@ struct CalibrationProblem {
     std::vector<ParameterSpec> parameters;
     std::filesystem::path lab_results;
     std::vector<SandTargets> targets;     ///< same order as sands
+    TensionTarget tension;                ///< the direct-tension target (none by default)
+    ValidationSpec validation;            ///< the validation specimens (none by default)
     bool representative = false;          ///< the lab data say they are representative, not measured
     std::string lab_note;
     Weights weights;
@@ -80,6 +119,9 @@ struct CalibrationProblem {
     int workers = 2;
     double timeout_s = 600.0;
     std::filesystem::path out_dir, ledger;
+
+    /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
+    [[nodiscard]] std::vector<Quantity> fitted_quantities() const;
 
     /// The bond law every run uses ([calibration] bond_model, or the base's [material] model).
     [[nodiscard]] BondModel bond_model() const { return base.material.bond.model; }
@@ -91,8 +133,17 @@ struct CalibrationProblem {
 
 CalibrationProblem load_calibration_problem(const std::filesystem::path& toml_file);
 
+/// The problem as its validation runs see it: the validation edge and seeds, no validation of
+/// its own (the same targets, parameters, ledger and output folder).
+CalibrationProblem validation_problem(const CalibrationProblem& problem);
+
 /// Reads the targets of `sands` from a lab_results.json; InputError naming the file otherwise.
 std::vector<SandTargets> read_lab_targets(const std::filesystem::path& json_file, const std::vector<std::string>& sands,
                                           bool* representative = nullptr, std::string* note = nullptr);
+
+/// The direct-tension strength of each of `sands` in a lab_results.json (`tensile_strength_mpa`,
+/// SI), nullopt for a sand without tensile tests; InputError naming the file otherwise.
+std::vector<std::optional<TargetStat>> read_lab_tensile_targets(const std::filesystem::path& json_file,
+                                                                const std::vector<std::string>& sands);
 
 }  // namespace gradem::cal

@@ -243,6 +243,7 @@ std::string encode(const Run& m) {
     w.u64(m.request.sand);
     w.u64(m.request.seed);
     put_material(w, m.request.material);
+    w.u8(m.request.test == CubeTest::tension ? 1 : 0);
     return w.take();
 }
 
@@ -256,6 +257,7 @@ Run decode_run(const std::string& bytes) {
     m.request.sand = r.u64();
     m.request.seed = r.u64();
     m.request.material = get_material(r);
+    m.request.test = r.u8() != 0 ? CubeTest::tension : CubeTest::compression;
     r.end();
     return m;
 }

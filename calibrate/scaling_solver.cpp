@@ -113,10 +113,10 @@ double unit_fd_step(const ParameterSpace& space, std::size_t k, double u, double
 double noise_floor_objective(const Evaluation& e, const CalibrationProblem& problem) {
     double j = 0.0;
     for (const SandOutcome& s : e.sands)
-        for (Quantity q : kQuantities) {
+        for (Quantity q : problem.fitted_quantities()) {
             const int k = static_cast<int>(q);
-            if (s.ok < 2 || !std::isfinite(s.std[k])) continue;
-            const double se = s.std[k] / s.mean[k] / std::sqrt(static_cast<double>(s.ok));
+            if (s.count(q) < 2 || !std::isfinite(s.std[k])) continue;
+            const double se = s.std[k] / s.mean[k] / std::sqrt(static_cast<double>(s.count(q)));
             j += std::pow(problem.weights.of(q) * se, 2);
         }
     return j;
@@ -148,12 +148,14 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
             h.modulus_deviation = max_deviation(r1.prediction, e1, Quantity::modulus);
             h.peak_deviation = max_deviation(r1.prediction, e1, Quantity::peak);
             h.strain_deviation = max_deviation(r1.prediction, e1, Quantity::strain);
+            if (ctx.problem.tension.fitted()) h.tension_deviation = max_deviation(r1.prediction, e1, Quantity::tension);
             h.holds = h.modulus_deviation <= ctx.problem.solver.homogeneity_tolerance &&
                       h.peak_deviation <= ctx.problem.solver.homogeneity_tolerance;
         }
         log("homogeneity check (moduli x " + std::to_string(h.alpha) + ", strengths x " + std::to_string(h.beta) +
             "): predicted vs run E " + percent(h.modulus_deviation) + ", peak " + percent(h.peak_deviation) + ", strain " +
-            percent(h.strain_deviation) + (h.holds ? " - holds" : " - does not hold"));
+            percent(h.strain_deviation) + (std::isfinite(h.tension_deviation) ? ", tension " + percent(h.tension_deviation) : "") +
+            (h.holds ? " - holds" : " - does not hold"));
         if (!h.holds)
             return fall_back(ctx, tracker.best().values, tracker, head,
                              e1.failed ? "the rescaled point failed (" + e1.failure + ")"

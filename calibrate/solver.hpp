@@ -7,6 +7,7 @@
 //             falls back to bobyqa on everything if the homogeneity does not hold
 //   bobyqa, sbplx, cobyla, crs2, direct   NLopt on all free parameters in the unit box
 //   ceres     Levenberg-Marquardt on the residual vector, forward differences of fd_step
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ struct SolveContext {
 struct HomogeneityCheck {
     bool done = false, holds = false;
     double modulus_deviation = 0, peak_deviation = 0, strain_deviation = 0;  ///< max |predicted/actual − 1|
+    double tension_deviation = std::nan("");  ///< of σt, when the problem fits it (NaN otherwise)
     double alpha = 1, beta = 1;  ///< the rescaling tested
 };
 

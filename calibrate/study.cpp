@@ -185,12 +185,12 @@ CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std:
         const std::optional<std::size_t> k = execution->models.find(problem);
         if (!k) throw std::logic_error("study: a case that study_problems() did not list");
         CaseExecutor executor(execution->executor, execution->models.offset(*k));
-        Evaluator evaluator(problem, space, executor, ledger, execution->models.model(*k).fingerprint());
+        Evaluator evaluator(problem, space, executor, ledger, execution->models.model(*k));
         return evaluate(evaluator);
     }
-    auto model = make_model(problem, test);
+    auto model = make_model(problem, test == CubeTest::tension);
     model->prepare(problem.seeds, problem.workers, say);
-    Evaluator evaluator(problem, space, *model, ledger, model->fingerprint());
+    Evaluator evaluator(problem, space, *model, ledger, {}, test);
     return evaluate(evaluator);
 }
 

@@ -47,6 +47,7 @@ CalibrationProblem as_study_problem(CalibrationProblem problem, const StudyConfi
     problem.workers = config.workers;
     problem.timeout_s = config.timeout_s;
     problem.solver.max_runs = 1 << 30;  // a study runs what it asks for
+    problem.tension = {};               // and fits nothing: its tension runs are cases of their own
     return problem;
 }
 
@@ -100,6 +101,12 @@ RunOutcome StudyModels::run(const RunRequest& request, double timeout_s) const {
 std::string StudyModels::fingerprint() const {
     std::string f = "study cases " + std::to_string(models_.size());
     for (const auto& m : models_) f += "\n--\n" + m->fingerprint();
+    return f;
+}
+
+std::string StudyModels::run_fingerprint(CubeTest test) const {
+    std::string f = "study cases " + std::to_string(models_.size());
+    for (const auto& m : models_) f += "\n--\n" + m->run_fingerprint(test);
     return f;
 }
 

@@ -46,6 +46,8 @@ public:
     [[nodiscard]] RunOutcome run(const RunRequest& request, double timeout_s) const override;
     /// Every case model's fingerprint, in order.
     [[nodiscard]] std::string fingerprint() const override;
+    /// Every case model's run fingerprint of `test`, in order (the Evaluators key with the case model's own).
+    [[nodiscard]] std::string run_fingerprint(CubeTest test) const override;
 
 private:
     std::vector<CalibrationProblem> problems_;

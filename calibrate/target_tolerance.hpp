@@ -3,6 +3,7 @@
 // quantity's tolerance: modulus and peak within 5 %, strain at peak within 10 % (the strain
 // at peak scatters more in the lab (its coefficient
 // of variation is about twice the peak's) and is the quantity the bond models' shape sets.
+// The direct-tension strength, when fitted, is met by its own rule (tension_met).
 // The one place the calibration summary (md, json, html) and the model_form study read them.
 #include <cmath>
 
@@ -22,8 +23,17 @@ struct TargetTolerances {
 inline constexpr TargetTolerances kTargetTolerances{};
 
 /// Is a relative error (simulated / lab − 1) within the quantity's tolerance? NaN: not met.
+/// (For the compression test's quantities; the tension target has its own rule, below.)
 inline bool target_met(Quantity q, double rel_error) {
     return std::isfinite(rel_error) && std::fabs(rel_error) <= kTargetTolerances.of(q);
+}
+
+/// Is the direct-tension target met? From the lab: |σt,sim/σt,lab − 1| <= its tolerance; from
+/// an assumed ratio: the simulated σc,sim/σt,sim within the assumed band (the ratio is what is
+/// known, not σt). NaN inputs: not met.
+inline bool tension_met(const TensionTarget& t, double rel_error, double simulated_ratio) {
+    if (t.assumed()) return std::isfinite(simulated_ratio) && simulated_ratio >= t.ratio_low && simulated_ratio <= t.ratio_high;
+    return std::isfinite(rel_error) && std::fabs(rel_error) <= t.tolerance;
 }
 
 }  // namespace gradem::cal

@@ -42,11 +42,11 @@ struct Rows {
 Rows rows_of(const Evaluation& e, const CalibrationProblem& p) {
     Rows r;
     for (const SandOutcome& s : e.sands)
-        for (Quantity q : kQuantities) {
+        for (Quantity q : p.fitted_quantities()) {
             if (p.weights.of(q) <= 0.0) continue;
             const TargetStat& lab = target_of(p.targets[s.sand], q);
             const int k = static_cast<int>(q);
-            const double sim_var = s.ok > 1 && std::isfinite(s.std[k]) ? s.std[k] * s.std[k] / s.ok : 0.0;
+            const double sim_var = s.count(q) > 1 && std::isfinite(s.std[k]) ? s.std[k] * s.std[k] / s.count(q) : 0.0;
             double var = (std::isfinite(lab.std) ? lab.std * lab.std : 0.0) + sim_var;
             if (!(var > 0.0)) var = std::pow(0.05 * lab.mean, 2);  // no scatter known: assume 5 %
             r.sand.push_back(s.sand);

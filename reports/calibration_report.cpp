@@ -23,7 +23,18 @@ using common::clock_text;
 /// Display scale and unit of a quantity.
 double display(Quantity q) { return q == Quantity::strain ? 1.0 : 1e-6; }
 const char* unit(Quantity q) { return q == Quantity::strain ? "-" : "MPa"; }
-const char* label(Quantity q) { return q == Quantity::modulus ? "chord modulus" : q == Quantity::peak ? "peak stress" : "strain at peak"; }
+const char* label(Quantity q) {
+    switch (q) {
+        case Quantity::modulus: return "chord modulus";
+        case Quantity::peak: return "peak stress";
+        case Quantity::strain: return "strain at peak";
+        case Quantity::tension: return "tensile strength";
+    }
+    return "?";
+}
+const char* short_label(Quantity q) {
+    return q == Quantity::modulus ? "E" : q == Quantity::peak ? "peak" : q == Quantity::strain ? "eps" : "sigt";
+}
 
 std::string fmt(double v, int digits = 4) { return common::format_significant(v, digits); }
 
@@ -49,28 +60,56 @@ struct TargetRow {
     double sim_mean, sim_std;
     int sim_n;
     double rel_error, z;
+    double ratio = std::nan("");  ///< tension rows: simulated σc/σt of the sand
+    bool met = false;
 };
 
 std::vector<TargetRow> target_rows(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<TargetRow> rows;
     auto add = [&](std::size_t s, const char* role) {
-        const SandOutcome* o = st.outcome(s);
-        for (Quantity q : kQuantities) {
+        const SandOutcome* o = std::string(role) == "validation" ? st.validation_outcome(s) : st.outcome(s);
+        for (Quantity q : p.fitted_quantities()) {
             TargetRow r{st.label, p.sands[s], role, q, target_of(p.targets[s], q), std::nan(""), std::nan(""), 0, std::nan(""), std::nan("")};
-            if (o && o->ok > 0) {
+            if (o && o->count(q) > 0) {
                 const int k = static_cast<int>(q);
                 r.sim_mean = o->mean[k];
                 r.sim_std = o->std[k];
-                r.sim_n = o->ok;
+                r.sim_n = o->count(q);
                 r.rel_error = r.sim_mean / r.lab.mean - 1.0;
                 r.z = z_score(r.sim_mean, r.sim_std, r.sim_n, r.lab);
+            }
+            if (q == Quantity::tension) {
+                if (o && o->ok > 0) r.ratio = o->value(Quantity::peak) / r.sim_mean;
+                r.met = tension_met(p.tension, r.rel_error, r.ratio);
+            } else {
+                r.met = target_met(q, r.rel_error);
             }
             rows.push_back(r);
         }
     };
     for (std::size_t s : st.fitted) add(s, "fitted");
     for (std::size_t s : st.predicted) add(s, "predicted");
+    if (p.validation.enabled())
+        for (std::size_t s : st.sands()) add(s, "validation");
     return rows;
+}
+
+/// "5 mm cubes, packing seeds 11, 12, 13".
+std::string validation_specimens_text(const CalibrationProblem& p) {
+    std::string seeds;
+    for (std::uint64_t s : p.validation.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
+    return fmt(p.validation.edge * 1e3, 3) + " mm cubes, packing seeds " + seeds;
+}
+
+/// Does the stage's result hold on the validation specimens (every validation row met)?
+bool validation_holds(const std::vector<TargetRow>& rows) {
+    bool any = false;
+    for (const TargetRow& r : rows)
+        if (r.role == "validation") {
+            if (!r.met) return false;
+            any = true;
+        }
+    return any;
 }
 
 /// E ε / σ: the shape index the homogeneity leaves to the shape parameters.
@@ -136,11 +175,45 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
     return out;
 }
 
+/// The lab's σc/σt of a sand (its peak-stress and tensile-strength means).
+double lab_ratio(const CalibrationProblem& p, const std::string& sand) {
+    for (const SandTargets& t : p.targets)
+        if (t.name == sand) return t.peak.mean / t.tension.mean;
+    return std::nan("");
+}
+
+/// "σc/σt 10 (assumed, band 8-12; basis ...)" or "σt from the lab's tensile tests".
+std::string tension_target_text(const CalibrationProblem& p) {
+    const TensionTarget& t = p.tension;
+    if (!t.assumed()) return "the lab's tensile strength (tensile_strength_mpa), within " + fmt(100.0 * t.tolerance, 3) + " %";
+    return "ASSUMED σc/σt = " + fmt(t.ratio, 3) + " (met within " + fmt(t.ratio_low, 3) + "-" + fmt(t.ratio_high, 3) +
+           "; basis: " + t.basis + ")";
+}
+
+std::string tension_unmet_statement(const CalibrationProblem& p, const TargetRow& r) {
+    std::ostringstream s;
+    s << r.sand << " " << label(r.q) << " (" << r.role << "): simulated " << fmt(r.sim_mean * 1e-6) << " MPa, σc/σt = "
+      << fmt(r.ratio, 3);
+    if (p.tension.assumed())
+        s << ", outside the assumed band " << fmt(p.tension.ratio_low, 3) << "-" << fmt(p.tension.ratio_high, 3)
+          << " (the target σt = σc,lab/" << fmt(p.tension.ratio, 3) << " = " << fmt(r.lab.mean * 1e-6) << " MPa)";
+    else
+        s << " vs lab " << fmt(r.lab.mean * 1e-6) << " MPa (" << pct(r.rel_error) << ")";
+    if (p.bond_model() == BondModel::parallel_bond)
+        s << " - a parallel-bond specimen's σc/σt stays near 2-4 whatever its strengths (Potyondy & Cundall 2004): a model-form "
+             "limit, which the flat joint's slit and gapped joints address";
+    return s.str();
+}
+
 std::vector<std::string> unmet_statements(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<std::string> out;
     for (const TargetRow& r : target_rows(p, st)) {
-        if (!std::isfinite(r.rel_error) || target_met(r.q, r.rel_error)) continue;
+        if (!std::isfinite(r.rel_error) || r.met) continue;
         std::ostringstream s;
+        if (r.q == Quantity::tension) {
+            out.push_back(tension_unmet_statement(p, r));
+            continue;
+        }
         s << r.sand << " " << label(r.q) << " (" << r.role << "): simulated " << fmt(r.sim_mean * display(r.q)) << " vs lab "
           << fmt(r.lab.mean * display(r.q)) << (r.q == Quantity::strain ? "" : " MPa") << " (" << pct(r.rel_error) << ")";
         if (r.q == Quantity::strain) {
@@ -159,6 +232,9 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
                   << " the strain at peak is D_sim/D_lab = " << pct(d_sim / d_lab - 1.0)
                   << " off; this is the best compromise the weights allow (model-form error, not an optimiser failure)";
             }
+        } else if (r.role == "validation") {
+            s << " - on the validation specimens (" << validation_specimens_text(p)
+              << "), which the fit never saw: the calibrated parameters do not hold there";
         } else if (r.role == "predicted") {
             s << " - a prediction, not a fit";
         } else if (p.mode == Mode::joint) {
@@ -169,14 +245,28 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
     return out;
 }
 
+json noise_floor_json(const CalibrationProblem& p, const CalibrationStage& st) {
+    json j = json::object();
+    for (Quantity q : p.fitted_quantities()) j[to_string(q)] = st.noise_floor[static_cast<int>(q)];
+    return j;
+}
+
 json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
     json targets = json::array();
-    for (const TargetRow& r : target_rows(p, st))
-        targets.push_back({{"sand", r.sand}, {"role", r.role}, {"quantity", to_string(r.q)}, {"unit", unit(r.q)},
-                           {"lab_mean", number(r.lab.mean * display(r.q))}, {"lab_std", number(r.lab.std * display(r.q))},
-                           {"lab_n", r.lab.n}, {"sim_mean", number(r.sim_mean * display(r.q))},
-                           {"sim_std", number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", number(r.rel_error)},
-                           {"z", number(r.z)}, {"tolerance", kTargetTolerances.of(r.q)}, {"met", target_met(r.q, r.rel_error)}});
+    for (const TargetRow& r : target_rows(p, st)) {
+        json t = {{"sand", r.sand}, {"role", r.role}, {"quantity", to_string(r.q)}, {"unit", unit(r.q)},
+                  {"lab_mean", number(r.lab.mean * display(r.q))}, {"lab_std", number(r.lab.std * display(r.q))},
+                  {"lab_n", r.lab.n}, {"sim_mean", number(r.sim_mean * display(r.q))},
+                  {"sim_std", number(r.sim_std * display(r.q))}, {"sim_n", r.sim_n}, {"rel_error", number(r.rel_error)},
+                  {"z", number(r.z)}, {"tolerance", r.q == Quantity::tension ? p.tension.tolerance : kTargetTolerances.of(r.q)},
+                  {"met", r.met}};
+        if (r.q == Quantity::tension) {
+            t["assumed"] = p.tension.assumed();
+            t["compressive_to_tensile_ratio"] = number(r.ratio);
+            if (p.tension.assumed()) t["ratio_band"] = {p.tension.ratio_low, p.tension.ratio_high};
+        }
+        targets.push_back(t);
+    }
     const SolveResult& s = st.solution;
     const Uncertainty& u = st.uncertainty;
     json j = {{"label", st.label},
@@ -187,7 +277,7 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
               {"best_evaluation", s.best_eval.index},
               {"parameters", parameters_json(p, st)},
               {"targets", targets},
-              {"noise_floor_rel_se", {{"modulus", st.noise_floor[0]}, {"peak_stress", st.noise_floor[1]}, {"strain_at_peak", st.noise_floor[2]}}},
+              {"noise_floor_rel_se", noise_floor_json(p, st)},
               {"identifiability", {{"computed", u.computed}, {"note", u.note}, {"singular_values", u.singular_values},
                                    {"condition_number", number(u.condition)}, {"poorly_identified", u.poorly_identified},
                                    {"difference_runs", u.fd_runs}, {"difference_points_reused", u.reused}}},
@@ -202,8 +292,53 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
         j["homogeneity"] = {{"holds", s.homogeneity.holds}, {"alpha", s.homogeneity.alpha}, {"beta", s.homogeneity.beta},
                             {"modulus_deviation", s.homogeneity.modulus_deviation}, {"peak_deviation", s.homogeneity.peak_deviation},
                             {"strain_deviation", s.homogeneity.strain_deviation}, {"tolerance", p.solver.homogeneity_tolerance}};
+    if (s.homogeneity.done && p.tension.fitted()) j["homogeneity"]["tension_deviation"] = number(s.homogeneity.tension_deviation);
     if (!st.prediction.sands.empty() && st.prediction.failed) j["prediction_failure"] = st.prediction.failure;
+    if (p.validation.enabled()) {
+        const StageValidation& v = st.validation;
+        j["validation"] = {{"edge_mm", p.validation.edge * 1e3}, {"seeds", p.validation.seeds}, {"runs", v.runs},
+                           {"from_ledger", v.from_ledger}, {"holds", validation_holds(target_rows(p, st))},
+                           {"failed", v.evaluation.failed}, {"failure", v.evaluation.failure}, {"note", v.note}};
+    }
     return j;
+}
+
+json tension_target_json(const CalibrationProblem& p) {
+    const TensionTarget& t = p.tension;
+    json j = {{"source", to_string(t.source)}};
+    if (!t.fitted()) return j;
+    j["weight"] = p.weights.tension;
+    if (t.assumed()) {
+        j["assumed"] = true;
+        j["compressive_to_tensile_ratio"] = t.ratio;
+        j["ratio_band"] = {t.ratio_low, t.ratio_high};
+        j["basis"] = t.basis;
+    } else {
+        j["assumed"] = false;
+        j["tolerance"] = t.tolerance;
+    }
+    return j;
+}
+
+/// The stage's validation first: fitted and validation errors side by side, and a plain verdict.
+void validation_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    const std::vector<TargetRow> rows = target_rows(p, st);
+    md << "**Validation** on " << validation_specimens_text(p) << " (" << st.validation.runs << " runs, "
+       << st.validation.from_ledger << " from the ledger): ";
+    if (!st.validation.note.empty()) md << st.validation.note << ".\n\n";
+    else if (st.validation.evaluation.failed) md << "a run failed (" << st.validation.evaluation.failure << ").\n\n";
+    else if (validation_holds(rows)) md << "every target holds on specimens the fit never saw.\n\n";
+    else md << "**the result does NOT hold on specimens the fit never saw** (rows marked no below).\n\n";
+    md << "| sand | target | fitted rel. error | validation rel. error | validation met |\n|---|---|---|---|---|\n";
+    for (const TargetRow& v : rows) {
+        if (v.role != "validation") continue;
+        double fitted = std::nan("");
+        for (const TargetRow& f : rows)
+            if (f.role != "validation" && f.sand == v.sand && f.q == v.q) fitted = f.rel_error;
+        md << "| " << v.sand << " | " << label(v.q) << " | " << pct(fitted) << " | " << pct(v.rel_error) << " | "
+           << (v.met ? "yes" : "no") << " |\n";
+    }
+    md << "\n";
 }
 
 }  // namespace
@@ -237,7 +372,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"lab_note", p.lab_note},
             {"dem_test_runs", r.runs_used},
             {"runs", {{"total", r.runs_used}, {"executed_now", r.runs_executed}, {"from_ledger", r.runs_from_ledger},
-                      {"failed", r.runs_failed}, {"budget", p.solver.max_runs}}},
+                      {"failed", r.runs_failed}, {"budget", p.solver.max_runs}, {"validation", r.validation_runs}}},
             {"evaluations", r.history.size()},
             {"wall_seconds", r.wall_seconds},
             {"ledger", p.ledger.string()},
@@ -248,6 +383,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"shape_index_d", all_d},
             {"target_tolerances", {{"modulus", kTargetTolerances.modulus}, {"peak_stress", kTargetTolerances.peak},
                                    {"strain_at_peak", kTargetTolerances.strain}, {"source", "calibrate/target_tolerance.hpp: modulus and peak within 5 %, strain at peak within 10 %"}}},
+            {"tension_target", tension_target_json(p)},
             {"stages", stages}};
 }
 
@@ -271,17 +407,24 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
        << fmt(p.base.specimen.genesis.edge * 1e3) << " mm\n"
        << "- DEM test runs: **" << r.runs_used << "** of a budget of " << p.solver.max_runs << " (" << r.runs_executed
        << " run now, " << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed); " << r.history.size()
-       << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n"
-       << "- targets: " << p.lab_results.string() << "; weights: modulus " << p.weights.modulus << ", peak " << p.weights.peak
-       << ", strain " << p.weights.strain << "\n\n";
+       << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n";
+    if (p.validation.enabled())
+        md << "- validation specimens: " << validation_specimens_text(p) << " (" << r.validation_runs
+           << " runs after the fit, apart from the budget)\n";
+    md << "- targets: " << p.lab_results.string() << "; weights: modulus " << p.weights.modulus << ", peak " << p.weights.peak
+       << ", strain " << p.weights.strain;
+    if (p.tension.fitted()) md << ", tension " << p.weights.tension << "\n- direct-tension target: " << tension_target_text(p);
+    md << "\n\n";
     for (const CalibrationStage& st : r.stages) {
         const SolveResult& s = st.solution;
-        md << "## " << st.label << "\n\n"
-           << "Solver path: " << s.method << "; stop: " << s.stop_reason << "; objective Σr² = " << fmt(s.best_objective) << "\n\n";
+        md << "## " << st.label << "\n\n";
+        if (p.validation.enabled()) validation_markdown(md, p, st);
+        md << "Solver path: " << s.method << "; stop: " << s.stop_reason << "; objective Σr² = " << fmt(s.best_objective) << "\n\n";
         if (s.homogeneity.done)
             md << "Homogeneity check on the actual specimens (moduli × " << fmt(s.homogeneity.alpha) << ", strengths × "
                << fmt(s.homogeneity.beta) << "): predicted vs run E " << pct(s.homogeneity.modulus_deviation) << ", peak "
-               << pct(s.homogeneity.peak_deviation) << ", strain " << pct(s.homogeneity.strain_deviation) << " - "
+               << pct(s.homogeneity.peak_deviation) << ", strain " << pct(s.homogeneity.strain_deviation)
+               << (std::isfinite(s.homogeneity.tension_deviation) ? ", tension " + pct(s.homogeneity.tension_deviation) : "") << " - "
                << (s.homogeneity.holds ? "holds" : "does not hold") << ".\n\n";
         md << "| parameter | value | ± 1 s.e. | bounds | free |\n|---|---|---|---|---|\n";
         const ParameterSpace space(p.parameters, p.base.material);
@@ -302,7 +445,10 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
               "|---|---|---|---|---|---|---|\n";
         for (const TargetRow& row : target_rows(p, st))
             md << "| " << row.sand << " | " << label(row.q) << " [" << unit(row.q) << "] | " << row.role << " | "
-               << fmt(row.lab.mean * display(row.q)) << " ± " << fmt(row.lab.std * display(row.q), 2) << " | "
+               << fmt(row.lab.mean * display(row.q))
+               << (row.q == Quantity::tension && p.tension.assumed() ? " (assumed: σc,lab/" + fmt(p.tension.ratio, 3) + ")"
+                                                                     : " ± " + fmt(row.lab.std * display(row.q), 2))
+               << " | "
                << fmt(row.sim_mean * display(row.q)) << " ± " << fmt(row.sim_std * display(row.q), 2) << " | " << pct(row.rel_error)
                << " | " << fmt(row.z, 2) << " |\n";
         md << "\n| sand | role | D = E·ε_peak/σ_peak lab | D simulated | rel. error |\n|---|---|---|---|---|\n";
@@ -310,7 +456,19 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
             md << "| " << row.sand << " | " << row.role << " | " << fmt(row.lab, 3) << " | " << fmt(row.sim, 3) << " | "
                << pct(row.sim / row.lab - 1.0) << " |\n";
         md << "\nNoise floor (relative standard error of the seed mean): modulus " << pct(st.noise_floor[0]).substr(1)
-           << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1) << ".\n\n";
+           << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1);
+        if (p.tension.fitted()) md << ", tension " << pct(st.noise_floor[static_cast<int>(Quantity::tension)]).substr(1);
+        md << ".\n\n";
+        if (p.tension.fitted()) {
+            md << "| sand | role | σc/σt simulated | " << (p.tension.assumed() ? "assumed band" : "lab") << " | met |\n|---|---|---|---|---|\n";
+            for (const TargetRow& row : target_rows(p, st))
+                if (row.q == Quantity::tension)
+                    md << "| " << row.sand << " | " << row.role << " | " << fmt(row.ratio, 3) << " | "
+                       << (p.tension.assumed() ? fmt(p.tension.ratio_low, 3) + "-" + fmt(p.tension.ratio_high, 3)
+                                               : fmt(lab_ratio(p, row.sand), 3))
+                       << " | " << (row.met ? "yes" : "no") << " |\n";
+            md << "\n";
+        }
         const Uncertainty& u = st.uncertainty;
         if (u.computed) {
             md << "Identifiability: singular values of the lab-normalised Jacobian (unit-box columns) ";
@@ -328,9 +486,10 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
             md << "Uncertainty: " << u.note << "\n\n";
         }
         const auto unmet = unmet_statements(p, st);
-        if (unmet.empty()) md << "Every target is met (" << tolerances_text() << " of the lab mean).\n\n";
+        const std::string rules = tolerances_text() + (p.tension.fitted() ? "; tension: " + tension_target_text(p) : "");
+        if (unmet.empty()) md << "Every target is met (" << rules << " of the lab mean).\n\n";
         else {
-            md << "**Targets not met (" << tolerances_text() << "):**\n\n";
+            md << "**Targets not met (" << rules << "):**\n\n";
             for (const auto& w : unmet) md << "- " << w << "\n";
             md << "\n";
         }
@@ -346,14 +505,14 @@ std::string convergence_csv(const CalibrationProblem& p, const CalibrationResult
     c << "evaluation,label,runs_used,wall_seconds,objective,failed";
     for (std::size_t k = 0; k < space.size(); ++k) c << "," << space.free(k).name;
     for (const auto& sand : p.sands)
-        for (Quantity q : kQuantities) c << ",\"" << sand << " " << to_string(q) << (q == Quantity::strain ? "" : "_mpa") << "\"";
+        for (Quantity q : p.fitted_quantities()) c << ",\"" << sand << " " << to_string(q) << (q == Quantity::strain ? "" : "_mpa") << "\"";
     c << "\n";
     for (const Evaluation& e : r.history) {
         c << e.index << "," << e.label << "," << e.runs_used << "," << e.seconds << "," << objective(e, p) << ","
           << (e.failed ? 1 : 0);
         for (double v : e.values) c << "," << v;
         for (std::size_t s = 0; s < p.sands.size(); ++s)
-            for (Quantity q : kQuantities) {
+            for (Quantity q : p.fitted_quantities()) {
                 c << ",";
                 for (const SandOutcome& o : e.sands)
                     if (o.sand == s && std::isfinite(o.value(q))) c << o.value(q) * display(q);
@@ -406,13 +565,21 @@ std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r
       << r.runs_from_ledger << " from ledger), " << clock_text(r.wall_seconds);
     for (const CalibrationStage& st : r.stages) {
         b << " | " << st.label << ":";
+        if (p.validation.enabled()) {
+            const std::vector<TargetRow> rows = target_rows(p, st);
+            b << " validation " << (validation_holds(rows) ? "holds" : "MISSES");
+            for (const TargetRow& row : rows)
+                if (row.role == "validation" && std::isfinite(row.rel_error))
+                    b << " " << row.sand << " " << short_label(row.q) << " " << pct(row.rel_error);
+            b << ";";
+        }
         const ParameterSpace space(p.parameters, p.base.material);
         for (std::size_t k = 0; k < space.size() && !st.solution.best.empty(); ++k)
             b << " " << space.free(k).name << "=" << fmt(st.solution.best[k], 3);
         for (const TargetRow& row : target_rows(p, st))
-            if (std::isfinite(row.rel_error))
-                b << "; " << row.sand << " " << (row.q == Quantity::modulus ? "E" : row.q == Quantity::peak ? "peak" : "eps")
-                  << " " << pct(row.rel_error);
+            if (std::isfinite(row.rel_error) && row.role != "validation")
+                b << "; " << row.sand << " " << short_label(row.q) << " " << pct(row.rel_error)
+                  << (row.q == Quantity::tension ? " (sigc/sigt " + fmt(row.ratio, 3) + ")" : "");
     }
     return b.str();
 }

@@ -14,6 +14,7 @@ from page import Page, fmt, pct
 
 WRITER = "gradem calibrate"
 QUANTITIES = [("modulus", "chord modulus", "MPa"), ("peak_stress", "peak stress", "MPa"), ("strain_at_peak", "strain at peak", "-")]
+TENSION = "tensile_strength"  # the direct-tension target's quantity, when the calibration fits it
 LABEL_COLORS = {"start": "#000000", "rescaled": "#0072B2", "shape": "#56B4E9", "confirm": "#009E73", "search": "#E69F00",
                 "lm": "#CC79A7", "uncertainty": "#999999", "prediction": "#D55E00"}
 
@@ -46,8 +47,16 @@ def build(out_dir):
                 "Relative error (simulated seed mean / lab mean − 1) of each target; green band behind each bar: met (within "
                 f"{tolerance_text(summary)}); grey "
                 "whiskers: the lab's own scatter (± 1 std / mean); hatched: predicted (not fitted) sands.")
+    tension = summary.get("tension_target") or {}
+    if tension.get("source") not in (None, "none"):
+        page.figure(ratio_figure(sands, stages, tension), "Compressive over tensile strength per sand",
+                    "Bars: the simulated σc/σt (seed means of the cube and direct-tension tests at the calibrated parameters); "
+                    + ("green band: the ASSUMED range " + "–".join(fmt(v, 3) for v in tension.get("ratio_band") or [])
+                       + " (basis: " + str(tension.get("basis", "?")) + ")." if tension.get("assumed")
+                       else "black marks: the lab's σc/σt (its tensile tests converted to direct tension)."))
     page.table(*targets_table(stages), caption="Per sand and target: lab mean ± sample std (n cubes), simulated mean ± seed "
-               "spread (n seeds), relative error, z = (sim − lab)/√(s_lab² + s_sim²/n).", text_columns=(0, 1, 2, 3),
+               "spread (n seeds), relative error, z = (sim − lab)/√(s_lab² + s_sim²/n). An assumed tensile target is σc,lab "
+               "over the assumed ratio.", text_columns=(0, 1, 2, 3),
                bad_rows=[i for i, t in enumerate(all_targets(stages)) if t.get("met") is False])
     page.section("Calibrated parameters")
     page.figure(parameters_figure(stages), "Calibrated parameters with ± 1 standard error",
@@ -111,10 +120,16 @@ def target(st, sand, quantity):
 # ----------------------------------------------------------------------------- headline
 
 def tolerance_text(summary):
-    """The summary's tolerances per quantity, e.g. "E ± 5 %, peak ± 5 %, strain at peak ± 10 %"."""
+    """The summary's tolerances per quantity, e.g. "E ± 5 %, peak ± 5 %, strain at peak ± 10 %" (and the tension rule)."""
     t = summary.get("target_tolerances") or {"modulus": 0.05, "peak_stress": 0.05, "strain_at_peak": 0.05}
-    return (f"E ± {fmt(100 * finite(t.get('modulus')), 3)} %, peak ± {fmt(100 * finite(t.get('peak_stress')), 3)} %, "
+    text = (f"E ± {fmt(100 * finite(t.get('modulus')), 3)} %, peak ± {fmt(100 * finite(t.get('peak_stress')), 3)} %, "
             f"strain at peak ± {fmt(100 * finite(t.get('strain_at_peak')), 3)} %")
+    tension = summary.get("tension_target") or {}
+    if tension.get("assumed"):
+        text += ", σc/σt within " + "–".join(fmt(v, 3) for v in tension.get("ratio_band") or []) + " (assumed)"
+    elif tension.get("source") == "lab":
+        text += f", σt ± {fmt(100 * finite(tension.get('tolerance')), 3)} %"
+    return text
 
 
 def headline(summary, stages, runs):
@@ -240,6 +255,36 @@ def errors_figure(sands, stages):
     return to_svg(fig)
 
 
+def ratio_figure(sands, stages, tension):
+    """σc/σt per sand and stage: the simulated bar against the assumed band or the lab's ratio."""
+    fig, (ax,) = new_figure(1, width=10.0, height=3.6)
+    groups = [(st, s, target(st, s, TENSION), target(st, s, "peak_stress")) for st in stages for s in sands]
+    groups = [g for g in groups if g[2]]
+    if not groups:
+        message_panel(ax, "no tension targets in summary.json")
+        ax.set_title("σc/σt")
+        return to_svg(fig)
+    band = tension.get("ratio_band") or []
+    if tension.get("assumed") and len(band) == 2:
+        ax.axhspan(finite(band[0]), finite(band[1]), color="#d8efd9", lw=0, label="assumed band (met)")
+        ax.axhline(finite(tension.get("compressive_to_tensile_ratio")), color="#2b8a3e", lw=1, ls="--", label="assumed ratio")
+    for g, (st, sand, t, peak) in enumerate(groups):
+        ratio = finite(t.get("compressive_to_tensile_ratio"))
+        ax.bar([g], [ratio if math.isfinite(ratio) else 0], 0.5, color=sand_color(sands.index(sand)), alpha=0.8,
+               hatch="//" if t.get("role") == "predicted" else None)
+        ax.text(g, (ratio if math.isfinite(ratio) else 0) + 0.2, fmt(ratio, 3), ha="center", va="bottom", fontsize=9)
+        if not tension.get("assumed") and peak:
+            lab = finite(peak.get("lab_mean")) / finite(t.get("lab_mean")) if finite(t.get("lab_mean")) else math.nan
+            ax.plot([g - 0.3, g + 0.3], [lab, lab], color="black", lw=2, label="lab" if g == 0 else None)
+    ax.set_xticks(range(len(groups)))
+    ax.set_xticklabels([s + (f" ({st['label']})" if len(stages) > 1 and st["label"] != s else "") for st, s, _, _ in groups])
+    ax.set_ylabel("σc / σt [-]")
+    ax.set_ylim(bottom=0)
+    ax.set_title("Compressive over direct-tension strength (simulated)")
+    ax.legend(loc="upper left", fontsize=8.5)
+    return to_svg(fig)
+
+
 def unit_position(p, v):
     """Position of value v within p's bounds in [0, 1] (log scale for log parameters)."""
     lo, hi = finite(p.get("lower")), finite(p.get("upper"))
@@ -338,11 +383,13 @@ def targets_table(stages):
     rows = []
     for st in stages:
         for t in st.get("targets") or []:
-            name = dict((q, n) for q, n, _ in QUANTITIES).get(t.get("quantity"), t.get("quantity"))
+            name = dict((q, n) for q, n, _ in QUANTITIES + [(TENSION, "tensile strength", "MPa")]).get(t.get("quantity"),
+                                                                                                         t.get("quantity"))
             unit = t.get("unit", "")
             unit = "" if unit == "-" else f" {unit}"
-            rows.append([st["label"], t.get("sand"), name, t.get("role", ""),
-                         f"{fmt(t.get('lab_mean'), 4)} ± {fmt(t.get('lab_std'), 2)}{unit} ({t.get('lab_n', '?')})",
+            lab = (f"{fmt(t.get('lab_mean'), 4)}{unit} (ASSUMED: σc over the assumed ratio)" if t.get("assumed")
+                   else f"{fmt(t.get('lab_mean'), 4)} ± {fmt(t.get('lab_std'), 2)}{unit} ({t.get('lab_n', '?')})")
+            rows.append([st["label"], t.get("sand"), name, t.get("role", ""), lab,
                          f"{fmt(t.get('sim_mean'), 4)} ± {fmt(t.get('sim_std'), 2)}{unit} ({t.get('sim_n', '?')})",
                          pct(t.get("rel_error")), fmt(t.get("z"), 2), "yes" if t.get("met") else "no"])
     return headers, rows

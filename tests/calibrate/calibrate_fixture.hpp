@@ -21,9 +21,11 @@ inline std::filesystem::path calibration_base_config() {
     return std::filesystem::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "calibration_cube.toml";
 }
 
-/// Lab targets = the model's seed means at `material` over `seeds` (with their spread as std).
+/// Lab targets = the model's seed means at `material` over `seeds` (with their spread as std);
+/// with `tension`, also the direct-tension strength (`tensile_strength_mpa`) of its tension test.
 inline nlohmann::json synthetic_lab_results(const cal::CubeModel& model, const std::vector<std::string>& sands,
-                                            const exp::MaterialParams& material, const std::vector<std::uint64_t>& seeds) {
+                                            const exp::MaterialParams& material, const std::vector<std::uint64_t>& seeds,
+                                            bool tension = false) {
     nlohmann::json out = {{"schema", "gradem-lab-results/1"}, {"representative_data", true},
                           {"note", "synthetic twin-experiment targets"}, {"sands", nlohmann::json::array()}};
     for (std::size_t s = 0; s < sands.size(); ++s) {
@@ -40,6 +42,12 @@ inline nlohmann::json synthetic_lab_results(const cal::CubeModel& model, const s
             return nlohmann::json{{"n", seeds.size()}, {"mean", mean}, {"std", std::sqrt(var) + 0.03 * mean}};
         };
         out["sands"].push_back({{"name", sands[s]}, {"chord_modulus_mpa", stat(0)}, {"peak_stress_mpa", stat(1)}, {"strain_at_peak", stat(2)}});
+        if (!tension) continue;
+        double t_sum = 0.0;
+        for (std::uint64_t seed : seeds) t_sum += model.run({s, seed, material, cal::CubeTest::tension}, 0.0).peak_pa * 1e-6;
+        const double t_mean = t_sum / static_cast<double>(seeds.size());
+        out["sands"].back()["tensile_strength_mpa"] = {{"n", seeds.size()}, {"mean", t_mean}, {"std", 0.05 * t_mean},
+                                                       {"conversion", "synthetic: the stand-in's direct-tension test"}};
     }
     return out;
 }

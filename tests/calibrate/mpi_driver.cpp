@@ -45,6 +45,7 @@ public:
         return inner_->run(q, t);
     }
     std::string fingerprint() const override { return inner_->fingerprint(); }
+    std::string run_fingerprint(cal::CubeTest t) const override { return inner_->run_fingerprint(t); }
 
 private:
     std::unique_ptr<cal::CubeModel> inner_;

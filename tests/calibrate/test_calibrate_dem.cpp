@@ -143,14 +143,20 @@ TEST_CASE("DEM tension model: the direct-tension test of `gradem tension` on the
     const exp::CubeConfig cube = exp::load_cube_config(dir.path / "base.toml");
 
     auto compression = cal::make_dem_model(cube, {"Van Buren"});
-    auto tension = cal::make_dem_model(cube, {"Van Buren"}, cal::CubeTest::tension);
+    auto tension = cal::make_dem_model(cube, {"Van Buren"}, true);
     compression->prepare({1}, 1, {});
     tension->prepare({1}, 1, {});  // the same cached packing
     CHECK(tension->fingerprint() != compression->fingerprint());
     CHECK_THAT(tension->fingerprint(), Catch::StartsWith(compression->fingerprint()) && Catch::Contains("direct tension"));
+    // A model with both tests keys its compression runs as the compression-only model does.
+    CHECK(tension->run_fingerprint(cal::CubeTest::compression) == compression->run_fingerprint(cal::CubeTest::compression));
+    CHECK(tension->run_fingerprint(cal::CubeTest::tension) == tension->fingerprint());
+    CHECK_THROWS_AS(compression->run_fingerprint(cal::CubeTest::tension), std::logic_error);
 
-    const cal::RunOutcome t = tension->run({0, 1, cube.material}, 0.0);
+    const cal::RunOutcome t = tension->run({0, 1, cube.material, cal::CubeTest::tension}, 0.0);
     const cal::RunOutcome c = compression->run({0, 1, cube.material}, 0.0);
+    // The both-tests model runs compression for a compression request: the same outcome, bitwise.
+    CHECK(tension->run({0, 1, cube.material}, 0.0).peak_pa == c.peak_pa);
     INFO("sigma_t " << t.peak_pa << " Pa, sigma_c " << c.peak_pa << " Pa; " << t.reason);
     REQUIRE(t.ok());
     REQUIRE(c.ok());
@@ -169,6 +175,6 @@ TEST_CASE("DEM tension model: the direct-tension test of `gradem tension` on the
 
     // A bad [tension] table is the config's error, before anything runs.
     test::write_text(dir.path / "bad.toml", cube_text + "[tension]\ngrip_depth_fraction = 0.9\n");
-    CHECK_THROWS_WITH(cal::make_dem_model(exp::load_cube_config(dir.path / "bad.toml"), {"Van Buren"}, cal::CubeTest::tension),
+    CHECK_THROWS_WITH(cal::make_dem_model(exp::load_cube_config(dir.path / "bad.toml"), {"Van Buren"}, true),
                       Catch::Contains("bad.toml") && Catch::Contains("tension.grip_depth_fraction"));
 }

@@ -228,13 +228,14 @@ TEST_CASE("study: model_form tabulates calibrations with their shape index, sigm
     // of a stand-in run (1000 x 1).
     const cal::CalibratedPoint cp = cal::load_calibrated_point(summary);
     const exp::MaterialParams m = cal::ParameterSpace(cp.problem.parameters, cp.problem.base.material).material(cp.values);
-    const auto tension = cal::make_analytic_model(kSands.size(), 0.003, 0.0, cal::CubeTest::tension);
+    const auto tension = cal::make_analytic_model(kSands.size(), 0.003, 0.0);
     nlohmann::json sj;
     std::ifstream(summary) >> sj;
     for (std::size_t s = 0; s < kSands.size(); ++s) {
         INFO(kSands[s]);
         const auto& row = model["sands"][s];
-        const double sigma_t = 0.5 * (tension->run({s, 1, m}, 0.0).peak_pa + tension->run({s, 2, m}, 0.0).peak_pa);
+        const double sigma_t = 0.5 * (tension->run({s, 1, m, cal::CubeTest::tension}, 0.0).peak_pa +
+                                      tension->run({s, 2, m, cal::CubeTest::tension}, 0.0).peak_pa);
         double sigma_c = 0.0;
         for (const auto& t : sj["targets"])
             if (t["sand"] == kSands[s] && t["quantity"] == "peak_stress") sigma_c = t["sim_mean"].get<double>() * 1e6;

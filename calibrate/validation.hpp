@@ -1,0 +1,62 @@
+#pragma once
+// The validation of a calibration ([validation] edge_mm, seeds; docs/calibration.md
+// "Validation"): each stage's result run on specimens the fit never saw - cubes of another edge
+// and other packing seeds - with the same tests (compression, and direct tension when the
+// problem fits it). A calibration that holds only on its own specimens is overfitted to their
+// packing noise or to their size; the summary leads with these errors.
+//
+// ValidatedModel is the fit's model and the validation's as one CubeModel, as StudyModels is
+// for a study's cases: the validation's sand s is the composite's sand (fitted sands) + s, so
+// an MPI job's worker ranks, which build make_model(problem), run validation requests too.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "calibrate/cube_model.hpp"
+#include "calibrate/evaluator.hpp"
+#include "calibrate/ledger.hpp"
+#include "calibrate/problem.hpp"
+#include "calibrate/run_executor.hpp"
+
+namespace gradem::cal {
+
+class ValidatedModel final : public CubeModel {
+public:
+    ValidatedModel(std::unique_ptr<CubeModel> fit, std::unique_ptr<CubeModel> validation, std::size_t sands,
+                   std::vector<std::uint64_t> validation_seeds);
+
+    [[nodiscard]] const CubeModel& fit() const { return *fit_; }
+    [[nodiscard]] const CubeModel& validation() const { return *validation_; }
+    /// The composite sand number of the validation's first sand.
+    [[nodiscard]] std::size_t offset() const { return sands_; }
+
+    /// The fit's packings for `seeds`, the validation's for its own seeds.
+    void prepare(const std::vector<std::uint64_t>& seeds, int workers, const std::function<void(const std::string&)>& log) override;
+    void load_prepared(const std::vector<std::uint64_t>& seeds) override;
+    [[nodiscard]] RunOutcome run(const RunRequest& request, double timeout_s) const override;
+    /// The fit's: the validation specimens are not part of the problem's identity.
+    [[nodiscard]] std::string fingerprint() const override { return fit_->fingerprint(); }
+    [[nodiscard]] std::string run_fingerprint(CubeTest test) const override { return fit_->run_fingerprint(test); }
+
+private:
+    std::unique_ptr<CubeModel> fit_, validation_;
+    std::size_t sands_;
+    std::vector<std::uint64_t> seeds_;
+};
+
+/// One stage's validation: its result on the validation specimens of `sands`.
+struct StageValidation {
+    Evaluation evaluation;            ///< empty sands: not run (no result, or it failed to run)
+    int runs = 0, from_ledger = 0;    ///< runs it took, and how many the ledger served
+    std::string note;                 ///< why it was not run, if it was not
+};
+
+/// Runs `point` on the validation specimens of `sands` through `executor` (which runs `model`'s
+/// requests), recording into `ledger`; `log` gets one milestone line.
+StageValidation validate_point(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor,
+                               Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
+                               const std::function<void(const std::string&)>& log);
+
+}  // namespace gradem::cal

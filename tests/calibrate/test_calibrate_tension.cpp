@@ -1,0 +1,183 @@
+// The direct-tension target of a calibration ([targets] tension): a twin experiment on the
+// analytic stand-in in which only the tension target pins the cohesion ratio down, the assumed
+// σc/σt with its band, the homogeneity of σt (× β), the run requests' test on the wire, and
+// the config's errors.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+
+#include "calibrate/objective.hpp"
+#include "calibrate/problem.hpp"
+#include "calibrate/run_message.hpp"
+#include "calibrate_fixture.hpp"
+#include "common/input_error.hpp"
+#include "experiments/cube_config.hpp"
+#include "reports/calibration_report.hpp"
+
+namespace fs = std::filesystem;
+using namespace gradem;
+using gradem::test::TempDir;
+
+namespace {
+
+const std::vector<std::string> kOneSand = {"pre-blended"};
+constexpr double kTruthModulus = 20.0, kTruthStrength = 12.0, kTruthRatio = 1.6, kCv = 0.25;  // GPa, MPa, -, -
+
+exp::MaterialParams truth_material() {
+    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
+    std::vector<cal::ParameterSpec> specs;
+    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
+        specs.push_back(cal::default_parameter(name, base));
+        specs.back().free = true;
+    }
+    return cal::ParameterSpace(specs, base).material({kTruthModulus, kTruthStrength, kTruthRatio, kCv});
+}
+
+/// One sand, E* σ̄c and c̄/σ̄c free, the strength cv fixed at the truth, no strain target: the
+/// compression test alone gives E and σc, two numbers for three parameters (σc = σ̄c p ρ^q
+/// trades σ̄c against ρ); σt = σ̄c t (1 − r v) separates them.
+fs::path one_sand_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& tension_keys) {
+    std::vector<std::uint64_t> seeds;
+    for (std::uint64_t s = 101; s <= 108; ++s) seeds.push_back(s);
+    test::write_text(dir / "lab_results.json", test::synthetic_lab_results(model, kOneSand, truth_material(), seeds, true).dump(1));
+    return test::write_problem(dir, "sands = [\"pre-blended\"]\nseeds = [1, 2]\n",
+                               "strain_weight = 0.0\n" + tension_keys +
+                                   "\n[parameters.strength_cv]\nfree = false\nstart = 0.25\n"
+                                   "[solver]\nmethod = \"scaling\"\nmax_runs = 400\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
+}
+
+double value_of(const cal::CalibrationProblem& p, const cal::CalibrationResult& r, const std::string& name) {
+    const cal::ParameterSpace space(p.parameters, p.base.material);
+    return r.stages.at(0).solution.best.at(*space.index_of(name));
+}
+
+}  // namespace
+
+TEST_CASE("a tension target from the lab pins down what compression alone cannot: known σt and c̄/σ̄c recovered",
+          "[calibrate][tension]") {
+    TempDir dir("cal-tension-lab");
+    auto model = cal::make_analytic_model(1, 0.001);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(one_sand_problem(dir.path, *model, "tension = \"lab\"\n"));
+    REQUIRE(problem.tension.source == cal::TensionSource::lab);
+    REQUIRE(problem.fitted_quantities().size() == 4);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    INFO("runs " << r.runs_used << "; E* " << value_of(problem, r, "effective_modulus_gpa") << ", sigma_c "
+                 << value_of(problem, r, "tensile_strength_mpa") << ", ratio " << value_of(problem, r, "cohesion_ratio"));
+    CHECK(value_of(problem, r, "effective_modulus_gpa") == Approx(kTruthModulus).epsilon(0.01));
+    CHECK(value_of(problem, r, "tensile_strength_mpa") == Approx(kTruthStrength).epsilon(0.01));
+    CHECK(value_of(problem, r, "cohesion_ratio") == Approx(kTruthRatio).epsilon(0.02));
+    // Every evaluation ran both tests: one tension run per compression run, each in the budget.
+    for (const cal::Evaluation& e : r.history) CHECK(e.tension_runs.size() == e.runs.size());
+    const nlohmann::json summary = cal::summary_json(problem, r);
+    CHECK(summary["tension_target"]["source"] == "lab");
+    int tension_rows = 0;
+    for (const auto& row : summary["targets"])
+        if (row["quantity"] == "tensile_strength") {
+            ++tension_rows;
+            CHECK(std::fabs(row["rel_error"].get<double>()) < 0.01);
+            CHECK(row["met"] == true);
+            CHECK(row["assumed"] == false);
+        }
+    CHECK(tension_rows == 1);
+    // Resumed: every run, compression and tension, is served from the ledger.
+    const cal::CalibrationResult again = cal::run_calibration(problem, *model);
+    CHECK(again.runs_executed == 0);
+    CHECK(again.runs_from_ledger == r.runs_used);
+}
+
+TEST_CASE("an assumed σc/σt: the target is σc,lab / ratio, met when the simulated ratio is in the band, shown as assumed",
+          "[calibrate][tension]") {
+    TempDir dir("cal-tension-assumed");
+    auto model = cal::make_analytic_model(1, 0.001);
+    // The stand-in's own ratio at the truth (seed means): the assumed ratio that the truth meets exactly.
+    const exp::MaterialParams truth = truth_material();
+    double sc = 0.0, st = 0.0;
+    for (std::uint64_t seed : {101, 102, 103, 104, 105, 106, 107, 108}) {
+        sc += model->run({0, seed, truth}, 0.0).peak_pa;
+        st += model->run({0, seed, truth, cal::CubeTest::tension}, 0.0).peak_pa;
+    }
+    const double ratio = sc / st;
+    const std::string keys = "tension = \"assumed_ratio\"\ntension_ratio = " + std::to_string(ratio) +
+                             "\ntension_ratio_low = " + std::to_string(0.9 * ratio) + "\ntension_ratio_high = " +
+                             std::to_string(1.1 * ratio) + "\ntension_basis = \"the stand-in's own ratio (test)\"\n";
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(one_sand_problem(dir.path, *model, keys));
+    // The target is the lab's peak over the ratio, with no lab scatter of its own.
+    REQUIRE(problem.tension.ratio == Approx(ratio).epsilon(1e-5));  // as written in the file
+    CHECK(problem.targets[0].tension.mean == Approx(problem.targets[0].peak.mean / problem.tension.ratio).epsilon(1e-12));
+    CHECK(problem.targets[0].tension.n == 0);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    CHECK(value_of(problem, r, "cohesion_ratio") == Approx(kTruthRatio).epsilon(0.03));
+    const nlohmann::json summary = cal::summary_json(problem, r);
+    CHECK(summary["tension_target"]["assumed"] == true);
+    CHECK(summary["tension_target"]["basis"] == "the stand-in's own ratio (test)");
+    for (const auto& row : summary["targets"])
+        if (row["quantity"] == "tensile_strength") {
+            CHECK(row["assumed"] == true);
+            CHECK(row["compressive_to_tensile_ratio"].get<double>() == Approx(ratio).epsilon(0.02));
+            CHECK(row["met"] == true);
+        }
+    const std::string md = cal::summary_markdown(problem, r);
+    CHECK_THAT(md, Catch::Contains("ASSUMED σc/σt") && Catch::Contains("the stand-in's own ratio (test)"));
+    CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("sigc/sigt"));
+}
+
+TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row sets β", "[calibrate][tension]") {
+    cal::CalibrationProblem p;
+    p.tension.source = cal::TensionSource::lab;
+    p.targets = {{"a", {10e9, 1e9, 3}, {20e6, 1e6, 3}, {0.003, 1e-4, 3}, {2e6, 1e5, 3}}};
+    p.weights = {1.0, 0.0, 0.0, 1.0};  // β is seen through σt alone
+    cal::Evaluation e;
+    cal::SandOutcome o;
+    o.ok = o.tension_ok = 2;
+    o.mean[0] = 10e9 / 1.7;
+    o.mean[1] = 20e6;             // ignored (zero weight)
+    o.mean[2] = 0.003;            // ignored
+    o.mean[3] = 2e6 / 0.8;        // σt: strengths × 0.8 would fit it
+    e.sands.push_back(o);
+    e.tension_runs.push_back({});
+    e.tension_runs.back().peak_pa = 2.5e6;
+    const cal::Scales sc = cal::best_scales(e, p, true, true);
+    CHECK(sc.alpha == Approx(1.7).epsilon(1e-12));
+    CHECK(sc.beta == Approx(0.8).epsilon(1e-12));
+    const cal::Evaluation scaled = cal::rescaled(e, sc.alpha, sc.beta);
+    CHECK(scaled.sands[0].value(cal::Quantity::tension) == Approx(2e6).epsilon(1e-12));
+    CHECK(scaled.tension_runs[0].peak_pa == Approx(2.5e6 * 0.8).epsilon(1e-12));
+    CHECK(cal::objective(scaled, p) < 1e-24);
+    // Without the tension target the same outcome says nothing about β.
+    p.tension.source = cal::TensionSource::none;
+    CHECK(cal::best_scales(e, p, true, true).beta == 1.0);
+}
+
+TEST_CASE("a run request's test travels on the wire", "[calibrate][tension]") {
+    cal::wire::Run m;
+    m.job = 7;
+    m.request = {1, 3, truth_material(), cal::CubeTest::tension};
+    const cal::wire::Run back = cal::wire::decode_run(cal::wire::encode(m));
+    CHECK(back.request.test == cal::CubeTest::tension);
+    m.request.test = cal::CubeTest::compression;
+    CHECK(cal::wire::decode_run(cal::wire::encode(m)).request.test == cal::CubeTest::compression);
+}
+
+TEST_CASE("bad tension targets are refused naming the key, line and rule", "[calibrate][tension]") {
+    TempDir dir("cal-tension-bad");
+    auto model = cal::make_analytic_model(1, 0.001);
+    auto refused = [&](const std::string& keys, const std::string& what) {
+        INFO(keys);
+        CHECK_THROWS_WITH(cal::load_calibration_problem(one_sand_problem(dir.path, *model, keys)),
+                          Catch::Contains("problem.toml:") && Catch::Contains(what));
+    };
+    refused("tension = \"splitting\"\n", "key 'targets.tension' = \"splitting\": expected one of none, lab, assumed_ratio");
+    refused("tension = \"assumed_ratio\"\ntension_ratio = 0.5\ntension_basis = \"x\"\n", "'targets.tension_ratio' = 0.5 violates > 1");
+    refused("tension = \"assumed_ratio\"\ntension_ratio_low = 11.0\ntension_basis = \"x\"\n", "violate 1 < low <= ratio <= high");
+    refused("tension = \"assumed_ratio\"\ntension_ratio_high = 9.0\ntension_basis = \"x\"\n", "tension_ratio_high");
+    refused("tension = \"lab\"\ntension_tolerance = 1.5\n", "'targets.tension_tolerance' = 1.5 violates in (0, 1)");
+    refused("tension = \"assumed_ratio\"\n", "'targets.tension_basis' is required");
+    refused("tension = \"lab\"\ntension_weight = -1.0\n", "'targets.tension_weight' must be >= 0");
+    // A lab source with lab results that hold no tensile tests.
+    test::write_problem(dir.path, "sands = [\"pre-blended\"]\n", "tension = \"lab\"\n[output]\ndir = \"out\"\n", "no_tensile.toml");
+    test::write_text(dir.path / "lab_results.json",
+                     test::synthetic_lab_results(*model, kOneSand, truth_material(), {1, 2}, false).dump(1));
+    CHECK_THROWS_WITH(cal::load_calibration_problem(dir.path / "no_tensile.toml"),
+                      Catch::Contains("no_tensile.toml:") && Catch::Contains("has no tensile_strength_mpa") &&
+                          Catch::Contains("assumed_ratio"));
+}

@@ -1,0 +1,133 @@
+// The validation specimens of a calibration ([validation] edge_mm, seeds): the result is run
+// on unseen seeds after the fit, reported first, and a result that does not hold there says so;
+// bad [validation] tables are refused before anything runs.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "calibrate/problem.hpp"
+#include "calibrate/validation.hpp"
+#include "calibrate_fixture.hpp"
+#include "experiments/cube_config.hpp"
+#include "reports/calibration_report.hpp"
+
+namespace fs = std::filesystem;
+using namespace gradem;
+using gradem::test::TempDir;
+
+namespace {
+
+const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
+
+exp::MaterialParams truth_material() {
+    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
+    std::vector<cal::ParameterSpec> specs;
+    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
+        specs.push_back(cal::default_parameter(name, base));
+        specs.back().free = true;
+    }
+    return cal::ParameterSpace(specs, base).material({20.0, 12.0, 1.6, 0.25});
+}
+
+fs::path problem_with(const fs::path& dir, const cal::CubeModel& model, const std::string& validation) {
+    test::write_text(dir / "lab_results.json",
+                     test::synthetic_lab_results(model, kSands, truth_material(), {101, 102, 103, 104, 105, 106}).dump(1));
+    return test::write_problem(dir, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
+                               "strain_weight = 1.0\n[solver]\nmethod = \"scaling\"\nmax_runs = 300\ntolerance = 0.002\n" + validation +
+                                   "\n[output]\ndir = \"out\"\n");
+}
+
+/// The stand-in with every modulus × `factor`: specimens on which the fitted parameters cannot hold.
+class StifferModel final : public cal::CubeModel {
+public:
+    explicit StifferModel(double factor) : inner_(cal::make_analytic_model(2, 0.001)), factor_(factor) {}
+    void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
+    cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
+        cal::RunOutcome o = inner_->run(q, t);
+        o.modulus_pa *= factor_;
+        o.strain_at_peak /= factor_;
+        return o;
+    }
+    std::string fingerprint() const override { return inner_->fingerprint() + "; stiffer"; }
+    std::string run_fingerprint(cal::CubeTest t) const override { return inner_->run_fingerprint(t) + "; stiffer"; }
+
+private:
+    std::unique_ptr<cal::CubeModel> inner_;
+    double factor_;
+};
+
+}  // namespace
+
+TEST_CASE("validation on unseen seeds: run after the fit, apart from the budget, and reported first", "[calibrate][validation]") {
+    TempDir dir("cal-validation");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem problem =
+        cal::load_calibration_problem(problem_with(dir.path, *plain, "[validation]\nseeds = [11, 12]\n"));
+    REQUIRE(problem.validation.enabled());
+    CHECK(problem.validation.edge == problem.base.specimen.genesis.edge);  // default: the fit's edge
+    const auto model = cal::make_model(problem);
+    REQUIRE(dynamic_cast<const cal::ValidatedModel*>(model.get()) != nullptr);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    const cal::CalibrationStage& st = r.stages.at(0);
+    // Every sand on every validation seed, once: 2 sands x 2 seeds.
+    CHECK(st.validation.runs == 4);
+    CHECK(r.validation_runs == 4);
+    REQUIRE(st.validation.evaluation.runs.size() == 4);
+    CHECK(st.validation.evaluation.values == st.solution.best);
+    CHECK(r.runs_used <= problem.solver.max_runs);
+    // The stand-in does not depend on the specimen, so the result holds on unseen seeds.
+    const nlohmann::json summary = cal::summary_json(problem, r);
+    CHECK(summary["stages"][0]["validation"]["holds"] == true);
+    int rows = 0;
+    for (const auto& t : summary["targets"])
+        if (t["role"] == "validation") {
+            ++rows;
+            CHECK(std::fabs(t["rel_error"].get<double>()) < 0.02);
+        }
+    CHECK(rows == 6);
+    const std::string md = cal::summary_markdown(problem, r);
+    CHECK(md.find("**Validation**") < md.find("Solver path"));  // the validation leads the stage
+    CHECK_THAT(md, Catch::Contains("every target holds on specimens the fit never saw"));
+    CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("validation holds"));
+    // A second run serves the validation from the ledger as well.
+    const cal::CalibrationResult again = cal::run_calibration(problem, *model);
+    CHECK(again.stages.at(0).validation.from_ledger == 4);
+    CHECK(again.runs_executed == 0);
+}
+
+TEST_CASE("a result that does not hold on the validation specimens says so plainly", "[calibrate][validation]") {
+    TempDir dir("cal-validation-miss");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem problem =
+        cal::load_calibration_problem(problem_with(dir.path, *plain, "[validation]\nseeds = [11, 12]\n"));
+    // Validation specimens 15 % stiffer than the fitted ones (as a larger, better converged cube can be).
+    cal::ValidatedModel model(cal::make_analytic_model(2, 0.001), std::make_unique<StifferModel>(1.15), kSands.size(),
+                                    problem.validation.seeds);
+    const cal::CalibrationResult r = cal::run_calibration(problem, model);
+    const nlohmann::json summary = cal::summary_json(problem, r);
+    CHECK(summary["stages"][0]["validation"]["holds"] == false);
+    for (const auto& t : summary["targets"])
+        if (t["role"] == "validation" && t["quantity"] == "modulus") {
+            CHECK(t["rel_error"].get<double>() == Approx(0.15).margin(0.02));
+            CHECK(t["met"] == false);
+        }
+    CHECK_THAT(cal::summary_markdown(problem, r), Catch::Contains("does NOT hold on specimens the fit never saw"));
+    CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("validation MISSES"));
+    bool stated = false;
+    for (const auto& u : summary["stages"][0]["unmet_targets"])
+        stated = stated || u.get<std::string>().find("validation specimens") != std::string::npos;
+    CHECK(stated);
+}
+
+TEST_CASE("bad [validation] tables are refused naming the key, line and rule", "[calibrate][validation]") {
+    TempDir dir("cal-validation-bad");
+    auto model = cal::make_analytic_model(2, 0.001);
+    auto refused = [&](const std::string& table, const std::string& what) {
+        INFO(table);
+        CHECK_THROWS_WITH(cal::load_calibration_problem(problem_with(dir.path, *model, table)),
+                          Catch::Contains("problem.toml:") && Catch::Contains(what));
+    };
+    refused("[validation]\nseeds = [2, 11]\n", "seed 2 is also a fitted seed");
+    refused("[validation]\nedge_mm = 1.0\nseeds = [11]\n", "'validation.edge_mm' = 1.0 violates >= 3 x the largest grain (0.8 mm)");
+    refused("[validation]\nedge_mm = 5.0\n", "'validation.seeds' is required");
+    refused("[validation]\nseeds = [11]\nedges = 5.0\n", "unknown key 'validation.edges'");
+}
