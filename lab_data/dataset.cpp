@@ -157,8 +157,6 @@ std::vector<const toml::table*> tables_of(const toml::table& t, const char* key,
 
 // [[sand.tension]]: name, test, files, and the nominal dimensions of that test (mm → m).
 TensionBatchSpec read_tension(const toml::table& t, const DatasetConfig& c, const std::string& file, std::size_t index) {
-    static const char* kSplittingKeys[] = {"diameter_mm", "length_mm"};
-    static const char* kFlexuralKeys[] = {"width_mm", "depth_mm", "span_mm"};
     check_keys(t, {"name", "test", "files", "diameter_mm", "length_mm", "width_mm", "depth_mm", "span_mm"}, "[[sand.tension]]", file);
     TensionBatchSpec batch;
     batch.name = get_string(t, "name", file, "tension " + std::to_string(index + 1));
@@ -174,12 +172,16 @@ TensionBatchSpec read_tension(const toml::table& t, const DatasetConfig& c, cons
     const auto kind = parse_tensile_test(name);
     if (!kind) throw InputError(file, line_of(*test), "key 'test': '" + name + "' is not a tensile test (expected " + kTensileTestNames + ")");
     spec.test = *kind;
+    // A dimension of the other kind of test is a mistake, not something to ignore.
+    const std::vector<std::string> splitting_keys{"diameter_mm", "length_mm"}, flexural_keys{"width_mm", "depth_mm", "span_mm"};
     const bool splitting = spec.test == TensileTestKind::splitting;
-    for (const char* key : splitting ? std::vector<const char*>(std::begin(kFlexuralKeys), std::end(kFlexuralKeys))
-                                     : std::vector<const char*>(std::begin(kSplittingKeys), std::end(kSplittingKeys)))
+    const auto& own = splitting ? splitting_keys : flexural_keys;
+    std::string own_list;
+    for (const auto& k : own) own_list += (own_list.empty() ? "" : ", ") + k;
+    for (const auto& key : splitting ? flexural_keys : splitting_keys)
         if (const toml::node* n = t.get(key))
-            throw InputError(file, line_of(*n), std::string("key '") + key + "' does not apply to a " + tensile_test_name(spec.test) +
-                                                    " test (its keys: " + (splitting ? "diameter_mm, length_mm" : "width_mm, depth_mm, span_mm") + ")");
+            throw InputError(file, line_of(*n), "key '" + key + "' does not apply to a " + tensile_test_name(spec.test) + " test (its keys: " +
+                                                    own_list + ")");
     TensileGeometry& g = spec.nominal;  // 0: not given (the export's, or for prisms ASTM C348's, is used)
     g.diameter_m = get_number(t, "diameter_mm", file, 0.0) * 1e-3;
     g.length_m = get_number(t, "length_mm", file, 0.0) * 1e-3;

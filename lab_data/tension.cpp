@@ -46,7 +46,7 @@ void add_source(std::string& sources, const std::string& s) {
     if (spec.config_file.empty())
         throw InputError(t.file, 0, what + "; give " + d.option + " (mm)");
     throw InputError(spec.config_file.string(), spec.config_line,
-                     spec.label + ": " + t.file + ": " + what + "; set " + d.config_key + " (mm) in " + spec.label);
+                     spec.label + ": " + t.file + ": " + what + "; set " + d.config_key + " (mm)");
 }
 
 std::string mm(double m) {
