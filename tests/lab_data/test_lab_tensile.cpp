@@ -79,7 +79,7 @@ const nlohmann::json& sand(const nlohmann::json& j, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("tensile: the ASTM formulas and the fib MC2010 factors against hand values", "[lab][tensile]") {
+TEST_CASE("lab: tensile: the ASTM formulas and the fib MC2010 factors against hand values", "[lab][tensile]") {
     // C496: P = 100 kN on a 100 × 200 mm cylinder: T = 2·1e5/(π·0.2·0.1) = 3.1831 MPa.
     CHECK(splitting_tensile_strength_pa(100e3, 0.200, 0.100) == Approx(3.18310e6).epsilon(1e-5));
     // C348: P = 3000 N on the 40 × 40 mm prism, span 120 mm: 3·3000·0.12/(2·0.04·0.04²) = 8.4375 MPa;
@@ -100,7 +100,7 @@ TEST_CASE("tensile: the ASTM formulas and the fib MC2010 factors against hand va
     CHECK_FALSE(parse_tensile_test("brazilian"));
 }
 
-TEST_CASE("tensile: exports in MTS and Bluehill layouts give the generated peak loads", "[lab][tensile]") {
+TEST_CASE("lab: tensile: exports in MTS and Bluehill layouts give the generated peak loads", "[lab][tensile]") {
     TensileSpec split;
     split.nominal_source = "command line";
     const ReadOptions read;
@@ -144,7 +144,7 @@ TEST_CASE("tensile: exports in MTS and Bluehill layouts give the generated peak 
     CHECK(c.strength_pa == Approx(4.6875e6).epsilon(1e-7));
 }
 
-TEST_CASE("tensile: dataset: per-sand statistics, pooled direct equivalent, Welch between sands", "[lab][tensile]") {
+TEST_CASE("lab: tensile: dataset: per-sand statistics, pooled direct equivalent, Welch between sands", "[lab][tensile]") {
     const LabStats lab = analyse_lab_dataset(kDataset);
     REQUIRE(lab.sands.size() == 2);
     REQUIRE(lab.tensile_tests.size() == 12);
@@ -184,7 +184,7 @@ TEST_CASE("tensile: dataset: per-sand statistics, pooled direct equivalent, Welc
     CHECK(c.test.dof == Approx(6.118246).epsilon(1e-5));
 }
 
-TEST_CASE("tensile: lab_results.json, tensile_tests.csv and the printed tables", "[lab][tensile][cli]") {
+TEST_CASE("lab: tensile: lab_results.json, tensile_tests.csv and the printed tables", "[lab][tensile][cli]") {
     const fs::path out = scratch("json");
     const Run r = run({kDataset, "--out", out.string(), "--json"});
     REQUIRE(r.status == 0);
@@ -247,7 +247,7 @@ TEST_CASE("tensile: lab_results.json, tensile_tests.csv and the printed tables",
     fs::remove_all(out);
 }
 
-TEST_CASE("tensile: export files on the command line with --test and geometry options", "[lab][tensile][cli]") {
+TEST_CASE("lab: tensile: export files on the command line with --test and geometry options", "[lab][tensile][cli]") {
     const Run s = run({tension("A-S3.csv"), "--test", "splitting", "--diameter-mm", "100", "--length-mm", "200", "--no-write", "--json"});
     REQUIRE(s.status == 0);
     const auto j = nlohmann::json::parse(s.out);
@@ -281,7 +281,7 @@ TEST_CASE("tensile: export files on the command line with --test and geometry op
     CHECK_THAT(m.err, Catch::Contains("A-S3.csv: splitting test: the export states no specimen diameter; give --diameter-mm (mm)"));
 }
 
-TEST_CASE("tensile: bad dataset input names file, line and key, and writes nothing", "[lab][tensile][errors]") {
+TEST_CASE("lab: tensile: bad dataset input names file, line and key, and writes nothing", "[lab][tensile][errors]") {
     const std::string fixtures = kFixtures + "/tension/";
     auto table = [&](const std::string& body) {
         return "[dataset]\nname = \"bad\"\n\n[[sand]]\nname = \"s\"\n\n[[sand.tension]]\nname = \"T1\"\n" + body;
