@@ -70,6 +70,21 @@ std::string error_of(const fs::path& dataset) {
     return "(no error)";
 }
 
+// `gradem lab DATASET --out OUT` on a bad dataset: exit 1, `message` on stderr, and OUT (which
+// holds one file beforehand) left as it was.
+void expect_refused_untouched(const fs::path& dataset, const std::string& message) {
+    const fs::path out = scratch("untouched");
+    fs::create_directories(out);
+    std::ofstream(out / "keep.txt") << "untouched\n";
+    const Run r = run({dataset.string(), "--out", out.string()});
+    CHECK(r.status == 1);
+    CHECK_THAT(r.err, Catch::Contains(message));
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(out)) left.push_back(e.path().filename().string());
+    CHECK(left == std::vector<std::string>{"keep.txt"});
+    fs::remove_all(out);
+}
+
 const nlohmann::json& sand(const nlohmann::json& j, const std::string& name) {
     for (const auto& s : j["sands"])
         if (s["name"] == name) return s;
@@ -290,28 +305,33 @@ TEST_CASE("lab: tensile: bad dataset input names file, line and key, and writes 
     SECTION("unknown test name") {
         const fs::path d = dataset_with("test_name", table("test = \"brazilian\"\nfiles = \"" + fixtures + "A-S1.csv\"\n"));
         CHECK_THAT(error_of(d), Catch::Contains("dataset.toml:9: key 'test': 'brazilian' is not a tensile test (expected splitting or flexural)"));
+        expect_refused_untouched(d, "dataset.toml:9: key 'test': 'brazilian' is not a tensile test (expected splitting or flexural)");
         fs::remove_all(d);
     }
     SECTION("missing diameter") {
         const fs::path d = dataset_with("diameter", table("test = \"splitting\"\nfiles = \"" + fixtures + "A-S3.csv\"\nlength_mm = 200\n"));
         CHECK_THAT(error_of(d), Catch::Contains("dataset.toml:7: [[sand.tension]] 'T1': ") &&
                                     Catch::Contains("A-S3.csv: splitting test: the export states no specimen diameter; set diameter_mm (mm)"));
+        expect_refused_untouched(d, "A-S3.csv: splitting test: the export states no specimen diameter; set diameter_mm (mm)");
         fs::remove_all(d);
     }
     SECTION("non-positive dimension") {
         const fs::path d = dataset_with("negative", table("test = \"flexural\"\nfiles = \"" + fixtures + "A-F1.csv\"\nspan_mm = 0\n"));
         CHECK_THAT(error_of(d), Catch::Contains("dataset.toml:11: key 'span_mm' must be > 0"));
+        expect_refused_untouched(d, "dataset.toml:11: key 'span_mm' must be > 0");
         fs::remove_all(d);
     }
     SECTION("a dimension of the other kind of test") {
         const fs::path d = dataset_with("other_kind", table("test = \"splitting\"\nfiles = \"" + fixtures + "A-S1.csv\"\nspan_mm = 100\n"));
         CHECK_THAT(error_of(d), Catch::Contains("dataset.toml:11: key 'span_mm' does not apply to a splitting test (its keys: diameter_mm, length_mm)"));
+        expect_refused_untouched(d, "dataset.toml:11: key 'span_mm' does not apply to a splitting test");
         fs::remove_all(d);
     }
     SECTION("unknown key") {
         const fs::path d = dataset_with("unknown", table("test = \"splitting\"\nfiles = \"" + fixtures + "A-S1.csv\"\ndiametre_mm = 50\n"));
         CHECK_THAT(error_of(d), Catch::Contains("dataset.toml:11: unknown key 'diametre_mm' in [[sand.tension]] (expected one of:") &&
                                     Catch::Contains("diameter_mm"));
+        expect_refused_untouched(d, "dataset.toml:11: unknown key 'diametre_mm' in [[sand.tension]]");
         fs::remove_all(d);
     }
     SECTION("a glob that matches nothing") {
@@ -319,27 +339,21 @@ TEST_CASE("lab: tensile: bad dataset input names file, line and key, and writes 
         const std::string e = error_of(d);
         CHECK_THAT(e, Catch::Contains("dataset.toml:10: key 'files' of [[sand.tension]] 'T1': pattern 'tension/PBT1-*.csv' matches no file"));
         CHECK_THAT(e, Catch::Contains("(in " + (d / "tension").string() + ")"));
+        expect_refused_untouched(d, "pattern 'tension/PBT1-*.csv' matches no file");
         fs::remove_all(d);
     }
     SECTION("test missing") {
         const fs::path d = dataset_with("no_test", table("files = \"" + fixtures + "A-S1.csv\"\n"));
         CHECK_THAT(error_of(d), Catch::Contains("dataset.toml:7: [[sand.tension]] 'T1' needs test = \"splitting\" or \"flexural\""));
+        expect_refused_untouched(d, "needs test = \"splitting\" or \"flexural\"");
         fs::remove_all(d);
     }
     SECTION("a file with no load column") {
-        const fs::path d = dataset_with("no_load", table("test = \"splitting\"\nfiles = \"" + kFixtures + "/missing_load.csv\"\ndiameter_mm = 50\nlength_mm = 100\n"));
+        // A good export first: nothing of it is written either.
+        const fs::path d = dataset_with("no_load", table("test = \"splitting\"\nfiles = [\"" + fixtures + "A-S1.csv\", \"" + kFixtures +
+                                                         "/missing_load.csv\"]\ndiameter_mm = 50\nlength_mm = 100\n"));
         CHECK_THAT(error_of(d), Catch::Contains("missing_load.csv:1: no load column"));
-        // ... and `gradem lab` writes nothing: the --out folder is left as it was.
-        const fs::path out = scratch("no_load_out");
-        fs::create_directories(out);
-        std::ofstream(out / "keep.txt") << "untouched\n";
-        const Run r = run({d.string(), "--out", out.string()});
-        CHECK(r.status == 1);
-        CHECK_THAT(r.err, Catch::Contains("no load column"));
-        std::vector<std::string> left;
-        for (const auto& e : fs::directory_iterator(out)) left.push_back(e.path().filename().string());
-        CHECK(left == std::vector<std::string>{"keep.txt"});
-        fs::remove_all(out);
+        expect_refused_untouched(d, "no load column");
         fs::remove_all(d);
     }
 }
