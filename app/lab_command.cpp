@@ -188,11 +188,11 @@ Reads lab data and reduces it to the statistics calibration uses.
 
 options:
   --out DIR           write lab_results.json, cubes.csv, tensile_tests.csv, sand_stats.csv,
-                      gradation.csv, comparisons.csv and curves.csv into DIR (default: ./lab_out), written
-                      atomically; then report.html (figures) when run by gradem
+                      gradation.csv, comparisons.csv and curves.csv into DIR (default:
+                      ./lab_out), written atomically; then report.html (figures) when run by gradem
   --no-write          write no files
   --json              print lab_results.json to stdout instead of the tables
-  --cubes             also print one row per cube
+  --cubes             also print one row per cube (and per tension specimen)
   --config FILE       for export files: a TOML with [specimen], [reduction], [columns]
   --format NAME       for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv
   --c144 FILE         for sieve analyses: ASTM C144 limits CSV to check them against
