@@ -2,8 +2,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 
 #include "common/input_error.hpp"
@@ -27,7 +29,21 @@ struct CommandLine {
     fs::path c144;
     std::optional<std::string> format;
     std::vector<std::pair<std::string, std::string>> columns, units;
+    std::optional<std::string> test;              ///< --test: the exports are tension tests of this kind
+    std::map<std::string, double> dimensions_mm;  ///< --diameter-mm etc., by option name
 };
+
+// The geometry options of tension exports: option, the test it belongs to, TensileGeometry field.
+struct DimensionOption {
+    const char* option;
+    TensileTestKind test;
+    double TensileGeometry::*field;
+};
+const DimensionOption kDimensionOptions[] = {{"--diameter-mm", TensileTestKind::splitting, &TensileGeometry::diameter_m},
+                                             {"--length-mm", TensileTestKind::splitting, &TensileGeometry::length_m},
+                                             {"--width-mm", TensileTestKind::flexural, &TensileGeometry::width_m},
+                                             {"--depth-mm", TensileTestKind::flexural, &TensileGeometry::depth_m},
+                                             {"--span-mm", TensileTestKind::flexural, &TensileGeometry::span_m}};
 
 std::pair<std::string, std::string> role_value(const std::string& opt, const std::string& arg) {
     const auto eq = arg.find('=');
@@ -38,7 +54,8 @@ std::pair<std::string, std::string> role_value(const std::string& opt, const std
 CommandLine parse(std::vector<std::string> args) {
     CommandLine c;
     std::vector<std::string> columns, units;
-    std::string format;
+    std::string format, test;
+    std::map<std::string, double> dimensions;
     fs::path config;
     CLI::App app{"Lab statistics from sieve analyses and load-frame exports.", "gradem lab"};
     app.set_help_flag();  // the usage text below is the help
@@ -52,6 +69,8 @@ CommandLine parse(std::vector<std::string> args) {
     app.add_option("--c144", c.c144);
     app.add_option("--column", columns)->allow_extra_args(false);
     app.add_option("--unit", units)->allow_extra_args(false);
+    app.add_option("--test", test);
+    for (const auto& d : kDimensionOptions) app.add_option(d.option, dimensions[d.option]);
     std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last-first
     try {
         app.parse(args);
@@ -62,6 +81,9 @@ CommandLine parse(std::vector<std::string> args) {
     }
     if (!config.empty()) c.config = config;
     if (!format.empty()) c.format = format;
+    if (!test.empty()) c.test = test;
+    for (const auto& d : kDimensionOptions)
+        if (app.count(d.option)) c.dimensions_mm[d.option] = dimensions[d.option];
     for (const auto& v : columns) c.columns.push_back(role_value("--column", v));
     for (const auto& v : units) c.units.push_back(role_value("--unit", v));
     return c;
@@ -92,17 +114,37 @@ DatasetConfig options_for_files(const CommandLine& c) {
     return config;
 }
 
+// --test and its geometry options → the spec every tension export given is read with.
+TensileSpec tension_spec(const CommandLine& c) {
+    const auto kind = parse_tensile_test(*c.test);
+    if (!kind) throw UsageError("--test '" + *c.test + "': expected " + kTensileTestNames);
+    TensileSpec spec;
+    spec.test = *kind;
+    spec.nominal_source = "command line";
+    for (const auto& d : kDimensionOptions) {
+        const auto it = c.dimensions_mm.find(d.option);
+        if (it == c.dimensions_mm.end()) continue;
+        if (d.test != spec.test)
+            throw UsageError(std::string(d.option) + " applies to " + tensile_test_name(d.test) + " tests, not to --test " + *c.test);
+        if (!(it->second > 0) || !std::isfinite(it->second)) throw UsageError(std::string(d.option) + " must be > 0 (mm)");
+        spec.nominal.*d.field = it->second * 1e-3;
+    }
+    return spec;
+}
+
 LabStats analyse(const CommandLine& c) {
     if (is_dataset(c.inputs.front())) {
         if (c.inputs.size() > 1) throw UsageError("a dataset folder or .toml must be the only input");
-        if (c.config || c.format || !c.columns.empty() || !c.units.empty())
-            throw UsageError("--config/--format/--column/--unit apply to export files; a dataset sets them in its TOML");
+        if (c.config || c.format || !c.columns.empty() || !c.units.empty() || c.test || !c.dimensions_mm.empty())
+            throw UsageError("--config/--format/--column/--unit/--test apply to export files; a dataset sets them in its TOML");
         return analyse_lab_dataset(c.inputs.front());
     }
     std::vector<fs::path> files(c.inputs.begin(), c.inputs.end());
     std::size_t sieves = 0;
     for (const auto& f : files) sieves += is_sieve_csv_file(f) ? 1 : 0;
-    if (sieves == files.size()) {
+    if (!c.test && !c.dimensions_mm.empty()) throw UsageError("the geometry options (--diameter-mm, ...) need --test splitting|flexural");
+    if (c.test && sieves > 0) throw UsageError("--test applies to load-frame exports, not sieve analyses");
+    if (sieves == files.size() && !c.test) {
         if (c.config || c.format || !c.columns.empty() || !c.units.empty())
             throw UsageError("--config/--format/--column/--unit apply to load-frame exports, not sieve analyses");
         return analyse_sieve_files(files, c.c144);
@@ -110,6 +152,13 @@ LabStats analyse(const CommandLine& c) {
     if (sieves > 0)
         throw UsageError("sieve analyses and load-frame exports given together: run them separately, or use a dataset");
     if (!c.c144.empty()) throw UsageError("--c144 applies to sieve analyses");
+    if (c.test) {
+        const TensileSpec spec = tension_spec(c);
+        DatasetConfig config = options_for_files(c);
+        TensileSpec with_config = spec;
+        with_config.use_file_geometry = config.read.use_file_geometry;
+        return analyse_tension_files(files, with_config, config);
+    }
     return analyse_lab_files(files, options_for_files(c));
 }
 
@@ -123,7 +172,8 @@ Reads lab data and reduces it to the statistics calibration uses.
       sieve analyses and cube exports by sand and batch -> Table 2 (gradation, D-values,
       Cu, Cc, USCS, fineness modulus, ASTM C144 verdicts) and Table 4-style statistics
       (ASTM C109 strength, strain at peak, ASTM C469 chord modulus), Welch t-tests
-      between sands, ASTM C109 permissible-range flags.
+      between sands, ASTM C109 permissible-range flags; [[sand.tension]] splitting and
+      flexural exports -> tensile strengths and their direct-tension equivalent.
   sieve analysis files (CSV/TSV, any delimiter, decimal commas; a sieve or opening column
       - US/ISO designations, mm, um or in - and percent passing, cumulative or individual
       retained, or retained masses with a Pan row; several sands as columns, FILE#sand picks
@@ -131,15 +181,18 @@ Reads lab data and reduces it to the statistics calibration uses.
       gradation (Table 2, D-values, Cu, Cc, USCS, fineness modulus; ASTM C144 with --c144);
       impossible tables are rejected naming the file, line and rule.
   export files (MTS TestSuite CSV, MTS 793 specimen.dat, Instron Bluehill RawData, plain CSV;
-      the format is detected from the content): each file is reduced.
+      the format is detected from the content): each file is reduced, as a C109 cube, or
+      with --test as a tension test: peak load -> ASTM C496 splitting tensile strength
+      T = 2P/(pi l d) or ASTM C348 flexural strength Sf = 3PL/(2bd^2), and the fib Model Code
+      2010 direct tensile strength (1.0 x T; 0.06h^0.7/(1 + 0.06h^0.7) x Sf, h in mm).
 
 options:
-  --out DIR           write lab_results.json, cubes.csv, sand_stats.csv, gradation.csv,
-                      comparisons.csv and curves.csv into DIR (default: ./lab_out), written
-                      atomically; then report.html (figures) when run by gradem
+  --out DIR           write lab_results.json, cubes.csv, tensile_tests.csv, sand_stats.csv,
+                      gradation.csv, comparisons.csv and curves.csv into DIR (default:
+                      ./lab_out), written atomically; then report.html (figures) when run by gradem
   --no-write          write no files
   --json              print lab_results.json to stdout instead of the tables
-  --cubes             also print one row per cube
+  --cubes             also print one row per cube (and per tension specimen)
   --config FILE       for export files: a TOML with [specimen], [reduction], [columns]
   --format NAME       for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv
   --c144 FILE         for sieve analyses: ASTM C144 limits CSV to check them against
@@ -147,6 +200,13 @@ options:
   --column ROLE=NAME  for export files: take column NAME as ROLE
                       (time, load, crosshead, strain, lateral_strain, stress)
   --unit ROLE=UNIT    for export files: unit of ROLE's column (e.g. load=kN)
+  --test KIND         for export files: they are tension tests, KIND splitting (ASTM C496
+                      cylinders) or flexural (ASTM C348 prisms, centre-point loading)
+  --diameter-mm D, --length-mm L
+                      splitting: cylinder dimensions where the export does not state them
+  --width-mm B, --depth-mm D, --span-mm S
+                      flexural: prism and span where the export does not state them
+                      (default the C348 prism: 40 x 40 mm on a 120 mm span)
   -h, --help          show this text
 
 exit status: 0 success, 1 bad input (message "file:line: what was expected"), 2 bad usage

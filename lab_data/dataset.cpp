@@ -56,7 +56,9 @@ bool get_bool(const toml::table& t, const char* key, const std::string& file, bo
     return n->as_boolean()->get();
 }
 
-std::vector<fs::path> glob(const fs::path& folder, const std::string& pattern, const std::string& file, int line) {
+// `what` names the key for the message (e.g. "key 'files' of [[sand.tension]] 'T1': "), or is empty.
+std::vector<fs::path> glob(const fs::path& folder, const std::string& pattern, const std::string& file, int line,
+                           const std::string& what = {}) {
     const fs::path full = folder / pattern;
     const fs::path dir = full.parent_path();
     const std::string name = full.filename().string();
@@ -65,7 +67,7 @@ std::vector<fs::path> glob(const fs::path& folder, const std::string& pattern, c
     if (fs::is_directory(dir, ec))
         for (const auto& entry : fs::directory_iterator(dir, ec))
             if (entry.is_regular_file() && fnmatch(name.c_str(), entry.path().filename().c_str(), 0) == 0) hits.push_back(entry.path());
-    if (hits.empty()) throw InputError(file, line, "pattern '" + pattern + "' matches no file (in " + dir.string() + ")");
+    if (hits.empty()) throw InputError(file, line, what + "pattern '" + pattern + "' matches no file (in " + dir.string() + ")");
     std::sort(hits.begin(), hits.end());
     return hits;
 }
@@ -125,33 +127,91 @@ void read_options_sections(const toml::table& root, DatasetConfig& c, const std:
     }
 }
 
+// The files of `files = "glob"` or `files = ["glob", ...]`, resolved against the dataset folder.
+std::vector<fs::path> files_of(const toml::node& files, const DatasetConfig& c, const std::string& file, const std::string& what) {
+    std::vector<const toml::node*> patterns;
+    if (const auto* arr = files.as_array()) for (const auto& p : *arr) patterns.push_back(&p);
+    else patterns.push_back(&files);
+    std::vector<fs::path> all;
+    for (const toml::node* p : patterns) {
+        if (!p->is_string()) throw InputError(file, line_of(*p), "files: expected a string or an array of strings");
+        const auto hits = glob(c.folder, std::string(p->as_string()->get()), file, line_of(*p), what);
+        all.insert(all.end(), hits.begin(), hits.end());
+    }
+    return all;
+}
+
+// The tables of an array of tables `key` ([[sand.tension]]); none when the key is absent.
+std::vector<const toml::table*> tables_of(const toml::table& t, const char* key, const std::string& where, const std::string& file) {
+    std::vector<const toml::table*> out;
+    const toml::node* n = t.get(key);
+    if (!n) return out;
+    const toml::array* arr = n->as_array();
+    if (!arr) throw InputError(file, line_of(*n), "'" + std::string(key) + "' must be an array of tables (" + where + ")");
+    for (const auto& node : *arr) {
+        if (!node.is_table()) throw InputError(file, line_of(node), where + " must be a table");
+        out.push_back(node.as_table());
+    }
+    return out;
+}
+
+// [[sand.tension]]: name, test, files, and the nominal dimensions of that test (mm → m).
+TensionBatchSpec read_tension(const toml::table& t, const DatasetConfig& c, const std::string& file, std::size_t index) {
+    check_keys(t, {"name", "test", "files", "diameter_mm", "length_mm", "width_mm", "depth_mm", "span_mm"}, "[[sand.tension]]", file);
+    TensionBatchSpec batch;
+    batch.name = get_string(t, "name", file, "tension " + std::to_string(index + 1));
+    TensileSpec& spec = batch.spec;
+    spec.label = "[[sand.tension]] '" + batch.name + "'";
+    spec.config_file = file;
+    spec.config_line = line_of(t);
+    spec.nominal_source = "dataset";
+    spec.use_file_geometry = c.read.use_file_geometry;
+    const toml::node* test = t.get("test");
+    if (!test) throw InputError(file, spec.config_line, spec.label + " needs test = \"splitting\" or \"flexural\"");
+    const std::string name = get_string(t, "test", file);
+    const auto kind = parse_tensile_test(name);
+    if (!kind) throw InputError(file, line_of(*test), "key 'test': '" + name + "' is not a tensile test (expected " + kTensileTestNames + ")");
+    spec.test = *kind;
+    // A dimension of the other kind of test is a mistake, not something to ignore.
+    const std::vector<std::string> splitting_keys{"diameter_mm", "length_mm"}, flexural_keys{"width_mm", "depth_mm", "span_mm"};
+    const bool splitting = spec.test == TensileTestKind::splitting;
+    const auto& own = splitting ? splitting_keys : flexural_keys;
+    std::string own_list;
+    for (const auto& k : own) own_list += (own_list.empty() ? "" : ", ") + k;
+    for (const auto& key : splitting ? flexural_keys : splitting_keys)
+        if (const toml::node* n = t.get(key))
+            throw InputError(file, line_of(*n), "key '" + key + "' does not apply to a " + tensile_test_name(spec.test) + " test (its keys: " +
+                                                    own_list + ")");
+    TensileGeometry& g = spec.nominal;  // 0: not given (the export's, or for prisms ASTM C348's, is used)
+    g.diameter_m = get_number(t, "diameter_mm", file, 0.0) * 1e-3;
+    g.length_m = get_number(t, "length_mm", file, 0.0) * 1e-3;
+    g.width_m = get_number(t, "width_mm", file, 0.0) * 1e-3;
+    g.depth_m = get_number(t, "depth_mm", file, 0.0) * 1e-3;
+    g.span_m = get_number(t, "span_mm", file, 0.0) * 1e-3;
+    const toml::node* files = t.get("files");
+    if (!files) throw InputError(file, spec.config_line, spec.label + " needs files = \"glob\"");
+    batch.files = files_of(*files, c, file, "key 'files' of " + spec.label + ": ");
+    return batch;
+}
+
 SandSpec read_sand(const toml::table& s, const DatasetConfig& c, const std::string& file, int line) {
-    check_keys(s, {"name", "sieve", "specific_gravity", "batch"}, "[[sand]]", file);
+    check_keys(s, {"name", "sieve", "specific_gravity", "batch", "tension"}, "[[sand]]", file);
     SandSpec sand;
     sand.name = get_string(s, "name", file);
     if (sand.name.empty()) throw InputError(file, line, "[[sand]] needs a name");
     const std::string sieve = get_string(s, "sieve", file);
     if (!sieve.empty()) sand.sieve = c.folder / sieve;
     sand.specific_gravity = get_number(s, "specific_gravity", file, 0.0, false);
-    const toml::array* batches = s.get("batch") ? s.get("batch")->as_array() : nullptr;
-    if (!batches) return sand;
-    for (const auto& node : *batches) {
-        const toml::table* b = node.as_table();
-        if (!b) throw InputError(file, line_of(node), "[[sand.batch]] must be a table");
+    for (const toml::table* b : tables_of(s, "batch", "[[sand.batch]]", file)) {
         check_keys(*b, {"name", "files"}, "[[sand.batch]]", file);
         BatchSpec batch{get_string(*b, "name", file, "batch " + std::to_string(sand.batches.size() + 1)), {}};
         const toml::node* files = b->get("files");
-        if (!files) throw InputError(file, line_of(node), "batch '" + batch.name + "' needs files = \"glob\"");
-        std::vector<const toml::node*> patterns;
-        if (const auto* arr = files->as_array()) for (const auto& p : *arr) patterns.push_back(&p);
-        else patterns.push_back(files);
-        for (const toml::node* p : patterns) {
-            if (!p->is_string()) throw InputError(file, line_of(*p), "files: expected a string or an array of strings");
-            const auto hits = glob(c.folder, std::string(p->as_string()->get()), file, line_of(*p));
-            batch.files.insert(batch.files.end(), hits.begin(), hits.end());
-        }
+        if (!files) throw InputError(file, line_of(*b), "batch '" + batch.name + "' needs files = \"glob\"");
+        batch.files = files_of(*files, c, file, {});
         sand.batches.push_back(std::move(batch));
     }
+    for (const toml::table* t : tables_of(s, "tension", "[[sand.tension]]", file))
+        sand.tension.push_back(read_tension(*t, c, file, sand.tension.size()));
     return sand;
 }
 
@@ -188,7 +248,8 @@ DatasetConfig load_dataset_config(const fs::path& path, bool require_sands) {
     if (require_sands) {
         if (c.sands.empty()) throw InputError(file, 0, "no [[sand]] defined");
         for (const auto& s : c.sands)
-            if (s.batches.empty()) throw InputError(file, 0, "sand '" + s.name + "' has no [[sand.batch]] with cube files");
+            if (s.batches.empty() && s.tension.empty())
+                throw InputError(file, 0, "sand '" + s.name + "' has no [[sand.batch]] with cube files and no [[sand.tension]]");
     }
     return c;
 }

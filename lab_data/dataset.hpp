@@ -14,6 +14,10 @@
 //   [[sand]]     name, sieve (CSV path; "file.csv#Sand B" picks one sand of a file with several),
 //                specific_gravity
 //   [[sand.batch]] name, files (glob or array of globs; '*' and '?' in the file-name part)
+//   [[sand.tension]] name, test ("splitting" | "flexural"), files (as for batches), and the
+//                nominal geometry used where an export does not state it: splitting
+//                diameter_mm, length_mm; flexural width_mm, depth_mm, span_mm (default the
+//                ASTM C348 prism, 40 × 40 mm on a 120 mm span). See tension.hpp.
 
 #include <filesystem>
 #include <string>
@@ -21,6 +25,7 @@
 
 #include "lab_data/curve_reduction.hpp"
 #include "lab_data/load_frame_test.hpp"
+#include "lab_data/tension.hpp"
 
 namespace gradem::lab {
 
@@ -29,11 +34,19 @@ struct BatchSpec {
     std::vector<std::filesystem::path> files;  ///< resolved and sorted
 };
 
+/// A group of tension specimens of one sand ([[sand.tension]]).
+struct TensionBatchSpec {
+    std::string name;
+    TensileSpec spec;                          ///< the test, nominal geometry, and where it was set
+    std::vector<std::filesystem::path> files;  ///< resolved and sorted
+};
+
 struct SandSpec {
     std::string name;
     std::filesystem::path sieve;  ///< empty: no gradation for this sand
     double specific_gravity = 0;  ///< 0: not given
     std::vector<BatchSpec> batches;
+    std::vector<TensionBatchSpec> tension;
 };
 
 struct DatasetConfig {
@@ -49,7 +62,7 @@ struct DatasetConfig {
 };
 
 /// Loads `path` (a .toml file, or a folder holding dataset.toml). With `require_sands`, at
-/// least one [[sand]] with one batch is needed. Throws InputError (file:line: ...) for TOML
+/// least one [[sand]] is needed, each with one batch of cubes or of tension specimens. Throws InputError (file:line: ...) for TOML
 /// syntax errors, unknown keys, wrong types, invalid values and globs that match nothing.
 DatasetConfig load_dataset_config(const std::filesystem::path& path, bool require_sands = true);
 

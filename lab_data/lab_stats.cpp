@@ -30,6 +30,17 @@ SandStatistics statistics_of(const std::vector<CubeResult>& cubes, const std::ve
     return {summarize(peak), summarize(strain), summarize(chord), summarize(tangent), summarize(crosshead)};
 }
 
+// Splitting, flexural and (pooled over both) direct-tension statistics of a sand's specimens.
+TensileStatistics tensile_statistics_of(const std::vector<TensileResult>& tests, const std::vector<std::size_t>& members) {
+    std::vector<double> splitting, flexural, direct;
+    for (auto i : members) {
+        const TensileResult& t = tests[i];
+        (t.test == TensileTestKind::splitting ? splitting : flexural).push_back(t.strength_pa);
+        direct.push_back(t.direct_equivalent_pa);
+    }
+    return {summarize(splitting), summarize(flexural), summarize(direct)};
+}
+
 // C109 range checks per batch; flags the cubes concerned.
 void range_checks(SandResult& sand, std::vector<CubeResult>& cubes, std::size_t group_size) {
     for (const auto& batch : sand.batches) {
@@ -68,13 +79,22 @@ void compare_sands(LabStats& lab) {
                                            {"chord_modulus_mpa", &CurveReduction::chord_modulus_pa},
                                            {"tangent_modulus_mpa", &CurveReduction::tangent_modulus_pa}};
     for (std::size_t a = 0; a < lab.sands.size(); ++a)
-        for (std::size_t b = a + 1; b < lab.sands.size(); ++b)
-            for (const auto& q : kQuantities) {
+        for (std::size_t b = a + 1; b < lab.sands.size(); ++b) {
+            const SandResult &sa = lab.sands[a], &sb = lab.sands[b];
+            if (!sa.cubes.empty() && !sb.cubes.empty())
+                for (const auto& q : kQuantities) {
+                    std::vector<double> xa, xb;
+                    for (auto i : sa.cubes) xa.push_back(lab.cubes[i].reduction.*q.field);
+                    for (auto i : sb.cubes) xb.push_back(lab.cubes[i].reduction.*q.field);
+                    lab.comparisons.push_back({q.name, sa.name, sb.name, welch_t_test(xa, xb)});
+                }
+            if (!sa.tensile.empty() && !sb.tensile.empty()) {  // the direct tensile strength calibration fits
                 std::vector<double> xa, xb;
-                for (auto i : lab.sands[a].cubes) xa.push_back(lab.cubes[i].reduction.*q.field);
-                for (auto i : lab.sands[b].cubes) xb.push_back(lab.cubes[i].reduction.*q.field);
-                lab.comparisons.push_back({q.name, lab.sands[a].name, lab.sands[b].name, welch_t_test(xa, xb)});
+                for (auto i : sa.tensile) xa.push_back(lab.tensile_tests[i].direct_equivalent_pa);
+                for (auto i : sb.tensile) xb.push_back(lab.tensile_tests[i].direct_equivalent_pa);
+                lab.comparisons.push_back({"tensile_strength_mpa", sa.name, sb.name, welch_t_test(xa, xb)});
             }
+        }
 }
 
 }  // namespace
@@ -129,11 +149,24 @@ LabStats analyse_lab_dataset(const DatasetConfig& config) {
                 lab.cubes.push_back(std::move(cube));
             }
         }
+        for (const TensionBatchSpec& batch : spec.tension) {
+            sand.tension_batches.push_back(batch.name);
+            for (const fs::path& f : batch.files) {
+                TensileResult t = read_tensile_file(f, display_path(f, config.folder), batch.spec, config.read);
+                t.sand = spec.name;
+                t.batch = batch.name;
+                t.representative = t.representative || config.representative;
+                sand.tensile.push_back(lab.tensile_tests.size());
+                lab.tensile_tests.push_back(std::move(t));
+            }
+        }
         range_checks(sand, lab.cubes, config.c109_group_size);
         sand.stats = statistics_of(lab.cubes, sand.cubes);
+        sand.tensile_stats = tensile_statistics_of(lab.tensile_tests, sand.tensile);
         lab.sands.push_back(std::move(sand));
     }
     for (const auto& c : lab.cubes) lab.representative = lab.representative || c.representative;
+    for (const auto& t : lab.tensile_tests) lab.representative = lab.representative || t.representative;
     compare_sands(lab);
     return lab;
 }
@@ -154,6 +187,28 @@ LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConf
         lab.cubes.push_back(std::move(cube));
     }
     group.stats = statistics_of(lab.cubes, group.cubes);
+    lab.sands.push_back(std::move(group));
+    if (lab.representative && lab.note.empty())
+        lab.note = "at least one file says it holds REPRESENTATIVE (synthetic) data, not measurements";
+    return lab;
+}
+
+LabStats analyse_tension_files(const std::vector<fs::path>& files, const TensileSpec& spec, const DatasetConfig& config) {
+    LabStats lab;
+    lab.dataset = config.name;
+    lab.source = "files";
+    lab.note = config.note;
+    lab.reduction = config.reduction;
+    SandResult group;
+    group.name = "files";
+    for (const auto& f : files) {
+        TensileResult t = read_tensile_file(f, f.string(), spec, config.read);
+        t.sand = group.name;
+        group.tensile.push_back(lab.tensile_tests.size());
+        lab.representative = lab.representative || t.representative;
+        lab.tensile_tests.push_back(std::move(t));
+    }
+    group.tensile_stats = tensile_statistics_of(lab.tensile_tests, group.tensile);
     lab.sands.push_back(std::move(group));
     if (lab.representative && lab.note.empty())
         lab.note = "at least one file says it holds REPRESENTATIVE (synthetic) data, not measurements";

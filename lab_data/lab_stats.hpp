@@ -15,6 +15,7 @@
 #include "lab_data/load_frame_test.hpp"
 #include "lab_data/sieve_table.hpp"
 #include "lab_data/statistics.hpp"
+#include "lab_data/tension.hpp"
 
 namespace gradem::lab {
 
@@ -41,6 +42,14 @@ struct SandStatistics {
     SampleSummary peak_stress_pa, strain_at_peak, chord_modulus_pa, tangent_modulus_pa, strain_at_peak_crosshead;
 };
 
+/// A sand's tension specimens: the strengths of each kind of test and the direct-tension
+/// equivalent, which pools the converted values of both kinds (tension.hpp).
+struct TensileStatistics {
+    SampleSummary splitting_pa;  ///< ASTM C496 splitting tensile strength T
+    SampleSummary flexural_pa;   ///< ASTM C348 flexural strength Sf
+    SampleSummary direct_pa;     ///< fib MC2010 direct tensile strength f_ct of every specimen
+};
+
 struct BatchRangeCheck {
     std::string batch;
     std::vector<std::string> files;  ///< the group's cubes
@@ -58,10 +67,13 @@ struct SandResult {
     std::vector<std::string> batches;
     SandStatistics stats;
     std::vector<BatchRangeCheck> range_checks;
+    std::vector<std::size_t> tensile;          ///< indices into LabStats::tensile_tests
+    std::vector<std::string> tension_batches;  ///< names of its [[sand.tension]] groups
+    TensileStatistics tensile_stats;
 };
 
 struct Comparison {
-    std::string quantity;  ///< "peak_stress_mpa", "strain_at_peak", "chord_modulus_mpa", "tangent_modulus_mpa"
+    std::string quantity;  ///< "peak_stress_mpa", "strain_at_peak", "chord_modulus_mpa", "tangent_modulus_mpa", "tensile_strength_mpa"
     std::string sand_a, sand_b;
     WelchTest test;        ///< in SI; mean_difference = a − b
 };
@@ -74,7 +86,8 @@ struct LabStats {
     ReductionOptions reduction;
     std::vector<SandResult> sands;
     std::vector<CubeResult> cubes;
-    std::vector<Comparison> comparisons;
+    std::vector<TensileResult> tensile_tests;
+    std::vector<Comparison> comparisons;  ///< cube quantities between sands with cubes, the direct tensile strength between sands with tension specimens
 };
 
 /// Reads and reduces a whole dataset (see dataset.hpp). Throws InputError naming the file and
@@ -85,6 +98,10 @@ LabStats analyse_lab_dataset(const DatasetConfig& config);
 /// Reduces individual export files with the options of `config` (its sands are ignored);
 /// the result has one pseudo-sand "files" with their statistics.
 LabStats analyse_lab_files(const std::vector<std::filesystem::path>& files, const DatasetConfig& config);
+
+/// Tension-test exports given as files (`gradem lab --test splitting FILE...`), all of the kind
+/// and nominal geometry of `spec`, read with the options of `config`; one pseudo-sand "files".
+LabStats analyse_tension_files(const std::vector<std::filesystem::path>& files, const TensileSpec& spec, const DatasetConfig& config);
 
 /// Sieve analyses given as files (`gradem lab sieve.csv ...`): every sand of every file (only
 /// the named one for "file.csv#sand"), named by its column headers or "# sand:" line (text

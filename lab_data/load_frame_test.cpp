@@ -83,30 +83,18 @@ std::optional<double> meta_length(const RawTable& t, const MetaEntry& m, Quantit
 SpecimenGeometry geometry_from(const RawTable& t, const ReadOptions& o, std::vector<std::string>& notes) {
     SpecimenGeometry g = o.nominal;
     if (!o.use_file_geometry) return g;
-    auto find = [&](std::initializer_list<const char*> keys, std::initializer_list<const char*> not_keys) -> const MetaEntry* {
-        for (const auto& m : t.metadata) {
-            const std::string k = to_lower(m.key);
-            bool excluded = false;
-            for (const char* n : not_keys) excluded = excluded || k.find(n) != std::string::npos;
-            if (excluded) continue;
-            for (const char* key : keys)
-                if (k.find(key) != std::string::npos) return &m;
-        }
-        return nullptr;
-    };
     bool from_file = false;
-    auto take = [&](const MetaEntry* m, double& field, Quantity q) {
-        if (!m) return;
-        if (const auto v = meta_length(t, *m, q, notes); v && *v > 0) { field = *v; from_file = true; }
+    auto take = [&](std::initializer_list<const char*> keys, std::initializer_list<const char*> not_keys, double& field, Quantity q) {
+        if (const auto v = metadata_dimension(t, keys, not_keys, q, notes)) { field = *v; from_file = true; }
     };
-    take(find({"width", "breite"}, {"rate"}), g.width_m, Quantity::length);
-    take(find({"depth", "thickness", "tiefe", "dicke", "länge", "length"}, {"gauge", "gage", "mess", "extensometer", "rate"}), g.depth_m, Quantity::length);
-    take(find({"height", "höhe"}, {"rate"}), g.height_m, Quantity::length);
-    take(find({"gauge length", "gage length", "messlänge", "extensometer length"}, {}), g.gauge_length_m, Quantity::length);
+    take({"width", "breite"}, {"rate"}, g.width_m, Quantity::length);
+    take({"depth", "thickness", "tiefe", "dicke", "länge", "length"}, {"gauge", "gage", "mess", "extensometer", "rate"}, g.depth_m, Quantity::length);
+    take({"height", "höhe"}, {"rate"}, g.height_m, Quantity::length);
+    take({"gauge length", "gage length", "messlänge", "extensometer length"}, {}, g.gauge_length_m, Quantity::length);
     double diameter = 0;
-    take(find({"diameter", "durchmesser"}, {}), diameter, Quantity::length);
+    take({"diameter", "durchmesser"}, {}, diameter, Quantity::length);
     if (diameter > 0) g.area_m2 = std::numbers::pi * diameter * diameter / 4;
-    take(find({"area", "fläche", "querschnitt"}, {}), g.area_m2, Quantity::area);
+    take({"area", "fläche", "querschnitt"}, {}, g.area_m2, Quantity::area);
     if (from_file) g.source = "file";
     return g;
 }
@@ -159,6 +147,22 @@ const char* role_name(ChannelRole role) {
 std::optional<ChannelRole> parse_role(std::string_view name) {
     for (ChannelRole r : kAllRoles)
         if (to_lower(trim(name)) == role_name(r)) return r;
+    return std::nullopt;
+}
+
+std::optional<double> metadata_dimension(const RawTable& t, std::initializer_list<const char*> keys,
+                                         std::initializer_list<const char*> not_keys, Quantity q, std::vector<std::string>& notes) {
+    for (const auto& m : t.metadata) {
+        const std::string k = to_lower(m.key);
+        bool excluded = false;
+        for (const char* n : not_keys) excluded = excluded || k.find(n) != std::string::npos;
+        if (excluded) continue;
+        for (const char* key : keys)
+            if (k.find(key) != std::string::npos) {
+                const auto v = meta_length(t, m, q, notes);
+                return v && *v > 0 ? v : std::nullopt;
+            }
+    }
     return std::nullopt;
 }
 

@@ -3,6 +3,7 @@
 // column roles (time, load, crosshead, extensometer strain, …) are known and units converted.
 
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "lab_data/curve_reduction.hpp"
 #include "lab_data/export_readers.hpp"
 #include "lab_data/raw_table.hpp"
+#include "lab_data/units.hpp"
 
 namespace gradem::lab {
 
@@ -66,6 +68,13 @@ LoadFrameTest interpret_export(const RawTable& table, const ReadOptions& options
 /// read_raw_export + interpret_export.
 LoadFrameTest read_load_frame_test(const std::filesystem::path& path, const ReadOptions& options = {});
 LoadFrameTest read_load_frame_bytes(std::string_view bytes, const std::string& file, const ReadOptions& options = {});
+
+/// A specimen dimension from the file's metadata: the first entry whose lower-case key contains
+/// one of `keys` and none of `not_keys`, as `q` (length or area) in SI ("50.21 mm", or value +
+/// unit cell; without a unit mm or mm², noted in `notes`). nullopt when there is no such entry or
+/// its value is not a positive number; InputError (file:line) when its unit is of another quantity.
+std::optional<double> metadata_dimension(const RawTable& table, std::initializer_list<const char*> keys,
+                                         std::initializer_list<const char*> not_keys, Quantity q, std::vector<std::string>& notes);
 
 /// Stress = load / loaded area (ASTM C109 §11); strain = extensometer (or, without one,
 /// crosshead displacement / height); crosshead strain reported separately.

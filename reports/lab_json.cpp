@@ -59,6 +59,16 @@ json gradation(const SandResult& s) {
     return j;
 }
 
+// Splitting, flexural and direct-equivalent statistics, each only when the sand has such specimens.
+void tensile_statistics(json& j, const SandResult& s, const LabStats& lab) {
+    if (s.tensile.empty()) return;
+    j["tension_batches"] = s.tension_batches;
+    if (s.tensile_stats.splitting_pa.n) j["splitting_tensile_strength_mpa"] = summary(s.tensile_stats.splitting_pa, 1e-6);
+    if (s.tensile_stats.flexural_pa.n) j["flexural_strength_mpa"] = summary(s.tensile_stats.flexural_pa, 1e-6);
+    j["tensile_strength_mpa"] = summary(s.tensile_stats.direct_pa, 1e-6);
+    j["tensile_strength_mpa"]["conversion"] = direct_tension_conversion(lab.tensile_tests, s.tensile);
+}
+
 json sand(const SandResult& s) {
     json j = {{"name", s.name}, {"n", s.cubes.size()}, {"batches", s.batches},
               {"specific_gravity", s.specific_gravity > 0 ? json(s.specific_gravity) : json(nullptr)},
@@ -75,6 +85,28 @@ json sand(const SandResult& s) {
                           {"retest_required", b.check.retest_required}});
     j["c109_range_checks"] = checks;
     j["gradation"] = s.sieve ? gradation(s) : json(nullptr);
+    return j;
+}
+
+json tensile_test(const TensileResult& t) {
+    const TensileGeometry& g = t.geometry;
+    json j = {{"file", t.file}, {"sand", t.sand}, {"batch", t.batch}, {"test", tensile_test_name(t.test)}, {"format", t.format},
+              {"representative", t.representative}, {"columns", t.columns}, {"peak_load_n", number(t.peak_load_n)},
+              {"peak_line", t.peak_line}};
+    if (t.test == TensileTestKind::splitting) {
+        j["diameter_mm"] = number(g.diameter_m * 1e3);
+        j["length_mm"] = number(g.length_m * 1e3);
+    } else {
+        j["width_mm"] = number(g.width_m * 1e3);
+        j["depth_mm"] = number(g.depth_m * 1e3);
+        j["span_mm"] = number(g.span_m * 1e3);
+    }
+    j["geometry_source"] = g.source;
+    j["strength_mpa"] = number(t.strength_pa / 1e6);
+    j["conversion_factor"] = number(t.direct_factor);
+    j["direct_equivalent_mpa"] = number(t.direct_equivalent_pa / 1e6);
+    j["flags"] = t.flags;
+    j["notes"] = t.notes;
     return j;
 }
 
@@ -112,10 +144,23 @@ nlohmann::json lab_stats_to_json(const LabStats& lab) {
         {"tangent_modulus_mpa", "slope of stress vs strain at " + std::to_string(lab.reduction.tangent_fraction) + " x peak"},
         {"popovics", "Popovics (1973) law fitted to the ascending branch (Ceres), standard errors from the fit covariance"},
         {"statistics", "std is the sample standard deviation (n - 1); all cubes included, flags do not exclude"}};
+    if (!lab.tensile_tests.empty()) {
+        j["definitions"]["splitting_tensile_strength_mpa"] = "ASTM C496: T = 2P/(pi l d), P maximum load, l length, d diameter";
+        j["definitions"]["flexural_strength_mpa"] =
+            "ASTM C348 (centre-point loading): Sf = 3PL/(2bd^2), L span, b width, d depth; 0.0028 P for the 40 x 40 mm prism on 120 mm";
+        j["definitions"]["tensile_strength_mpa"] =
+            "direct tensile strength per fib Model Code 2010 5.1.5.1: alpha_sp = 1.0 x splitting, alpha_fl = 0.06 h^0.7/(1 + 0.06 h^0.7) "
+            "x flexural (h depth in mm); a sand with both kinds pools the converted values of every specimen";
+    }
     j["sands"] = json::array();
-    for (const auto& s : lab.sands) j["sands"].push_back(sand(s));
+    for (const auto& s : lab.sands) {
+        j["sands"].push_back(sand(s));
+        tensile_statistics(j["sands"].back(), s, lab);
+    }
     j["cubes"] = json::array();
     for (const auto& c : lab.cubes) j["cubes"].push_back(cube(c));
+    j["tensile_tests"] = json::array();
+    for (const auto& t : lab.tensile_tests) j["tensile_tests"].push_back(tensile_test(t));
     j["comparisons"] = json::array();
     for (const auto& c : lab.comparisons) {
         const double k = scale_of(c.quantity);

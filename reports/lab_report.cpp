@@ -44,6 +44,16 @@ const Row kRows[] = {{"Compressive strength (MPa), ASTM C109", &SandStatistics::
                      {"Tangent modulus at 50 % of peak (MPa)", &SandStatistics::tangent_modulus_pa, 1e-6, 0, "tangent_modulus_mpa"},
                      {"Strain at peak, crosshead (-)", &SandStatistics::strain_at_peak_crosshead, 1.0, 5, "strain_at_peak_crosshead"}};
 
+struct TensileRow {
+    const char* label;
+    const SampleSummary TensileStatistics::*field;
+    const char* csv_name;
+};
+const TensileRow kTensileRows[] = {
+    {"Splitting tensile strength (MPa), ASTM C496", &TensileStatistics::splitting_pa, "splitting_tensile_strength_mpa"},
+    {"Flexural strength (MPa), ASTM C348", &TensileStatistics::flexural_pa, "flexural_strength_mpa"},
+    {"Direct tensile strength equivalent (MPa), fib Model Code 2010 5.1.5.1", &TensileStatistics::direct_pa, "tensile_strength_mpa"}};
+
 void print_gradation(std::ostream& out, const LabStats& lab) {
     std::vector<const SandResult*> sands;
     for (const auto& s : lab.sands)
@@ -92,6 +102,29 @@ void print_statistics(std::ostream& out, const LabStats& lab) {
                 << f(m.max * row.scale, row.decimals) << "\n";
         }
     }
+}
+
+void print_summary_row(std::ostream& out, const std::string& sand, const SampleSummary& m, double scale, int decimals) {
+    out << "  " << pad(sand, 14) << pad(std::to_string(m.n), 4) << pad(f(m.mean * scale, decimals), 11) << pad(f(m.std * scale, decimals), 11)
+        << pad(f(m.cv * 100, 1), 7) << pad(f(m.min * scale, decimals), 11) << f(m.max * scale, decimals) << "\n";
+}
+
+void print_tensile(std::ostream& out, const LabStats& lab) {
+    out << "\nTensile strength (per sand); the direct equivalent pools the converted values of both kinds of test\n";
+    for (const TensileRow& row : kTensileRows) {
+        bool any = false;
+        for (const auto& s : lab.sands) any = any || (s.tensile_stats.*row.field).n > 0;
+        if (!any) continue;
+        out << row.label << "\n  " << pad("Sand", 14) << pad("n", 4) << pad("mean", 11) << pad("std", 11) << pad("CV %", 7)
+            << pad("min", 11) << "max\n";
+        for (const auto& s : lab.sands)
+            if ((s.tensile_stats.*row.field).n) print_summary_row(out, s.name, s.tensile_stats.*row.field, 1e-6, 3);
+    }
+    for (const auto& s : lab.sands)
+        if (!s.tensile.empty()) out << "  " << s.name << ": " << direct_tension_conversion(lab.tensile_tests, s.tensile) << "\n";
+}
+
+void print_comparisons(std::ostream& out, const LabStats& lab) {
     if (lab.comparisons.empty()) return;
     out << "\nWelch t-tests (two-sided)\n  " << pad("Quantity", 22) << pad("Sands", 26) << pad("t", 8) << pad("dof", 7)
         << pad("p", 11) << "Hedges g\n";
@@ -112,6 +145,25 @@ void print_flags(std::ostream& out, const LabStats& lab) {
         out << "  " << c.file << ":";
         for (const auto& fl : c.flags) out << " " << fl;
         out << "\n";
+    }
+    for (const auto& t : lab.tensile_tests) {
+        if (t.flags.empty()) continue;
+        out << "  " << t.file << ":";
+        for (const auto& fl : t.flags) out << " " << fl;
+        out << "\n";
+    }
+}
+
+void print_tensile_tests(std::ostream& out, const LabStats& lab) {
+    out << "\nPer tension specimen\n  " << pad("File", 34) << pad("test", 11) << pad("P_max kN", 10) << pad("geometry mm", 22)
+        << pad("strength MPa", 14) << pad("factor", 8) << "direct MPa\n";
+    for (const auto& t : lab.tensile_tests) {
+        const TensileGeometry& gm = t.geometry;
+        const std::string geometry = t.test == TensileTestKind::splitting
+                                         ? "d " + f(gm.diameter_m * 1e3, 1) + " l " + f(gm.length_m * 1e3, 1)
+                                         : f(gm.width_m * 1e3, 1) + "x" + f(gm.depth_m * 1e3, 1) + " L " + f(gm.span_m * 1e3, 1);
+        out << "  " << pad(t.file, 34) << pad(tensile_test_name(t.test), 11) << pad(f(t.peak_load_n / 1e3, 3), 10) << pad(geometry, 22)
+            << pad(f(t.strength_pa / 1e6, 3), 14) << pad(f(t.direct_factor, 4), 8) << f(t.direct_equivalent_pa / 1e6, 3) << "\n";
     }
 }
 
@@ -150,6 +202,26 @@ std::string cubes_csv(const LabStats& lab) {
     return o.str();
 }
 
+std::string tensile_tests_csv(const LabStats& lab) {
+    std::ostringstream o;
+    o << banner(lab)
+      << "file,sand,batch,test,format,representative,peak_load_n,diameter_mm,length_mm,width_mm,depth_mm,span_mm,geometry_source,"
+         "strength_mpa,conversion_factor,direct_equivalent_mpa,flags\n";
+    for (const auto& t : lab.tensile_tests) {
+        const TensileGeometry& gm = t.geometry;
+        const bool splitting = t.test == TensileTestKind::splitting;
+        auto dim = [](bool used, double m) { return used ? g(m * 1e3) : std::string(); };
+        std::string flags;
+        for (const auto& fl : t.flags) flags += (flags.empty() ? "" : ";") + fl;
+        o << csv_text(t.file) << ',' << csv_text(t.sand) << ',' << csv_text(t.batch) << ',' << tensile_test_name(t.test) << ','
+          << t.format << ',' << (t.representative ? "true" : "false") << ',' << g(t.peak_load_n) << ',' << dim(splitting, gm.diameter_m)
+          << ',' << dim(splitting, gm.length_m) << ',' << dim(!splitting, gm.width_m) << ',' << dim(!splitting, gm.depth_m) << ','
+          << dim(!splitting, gm.span_m) << ',' << csv_text(gm.source) << ',' << g(t.strength_pa / 1e6) << ',' << g(t.direct_factor) << ','
+          << g(t.direct_equivalent_pa / 1e6) << ',' << csv_text(flags) << '\n';
+    }
+    return o.str();
+}
+
 std::string sand_stats_csv(const LabStats& lab) {
     std::ostringstream o;
     o << banner(lab) << "sand,quantity,n,mean,std,cv,min,max,representative\n";
@@ -159,6 +231,13 @@ std::string sand_stats_csv(const LabStats& lab) {
             o << csv_text(s.name) << ',' << row.csv_name << ',' << m.n << ',' << g(m.mean * row.scale) << ',' << g(m.std * row.scale)
               << ',' << g(m.cv) << ',' << g(m.min * row.scale) << ',' << g(m.max * row.scale) << ','
               << (lab.representative ? "true" : "false") << '\n';
+        }
+    for (const auto& s : lab.sands)  // tension rows only for sands that have such specimens
+        for (const TensileRow& row : kTensileRows) {
+            const SampleSummary& m = s.tensile_stats.*row.field;
+            if (!m.n) continue;
+            o << csv_text(s.name) << ',' << row.csv_name << ',' << m.n << ',' << g(m.mean * 1e-6) << ',' << g(m.std * 1e-6) << ','
+              << g(m.cv) << ',' << g(m.min * 1e-6) << ',' << g(m.max * 1e-6) << ',' << (lab.representative ? "true" : "false") << '\n';
         }
     return o.str();
 }
@@ -216,6 +295,7 @@ void write_lab_outputs(const fs::path& dir, const LabStats& lab) {
     if (ec) throw InputError(dir.string(), 0, "cannot create output directory: " + ec.message());
     common::write_files_atomically({{dir / "lab_results.json", lab_stats_to_json(lab).dump(2) + "\n"},
                       {dir / "cubes.csv", cubes_csv(lab)},
+                      {dir / "tensile_tests.csv", tensile_tests_csv(lab)},
                       {dir / "sand_stats.csv", sand_stats_csv(lab)},
                       {dir / "gradation.csv", gradation_csv(lab)},
                       {dir / "comparisons.csv", comparisons_csv(lab)},
@@ -223,15 +303,23 @@ void write_lab_outputs(const fs::path& dir, const LabStats& lab) {
 }
 
 void print_lab_report(std::ostream& out, const LabStats& lab, bool per_cube) {
-    if (lab.cubes.empty()) out << "gradem lab: " << lab.sands.size() << " sieve analyses\n";
-    else out << "gradem lab: " << lab.dataset << " (" << lab.source << "), " << lab.cubes.size() << " cubes\n";
+    if (lab.cubes.empty() && lab.tensile_tests.empty()) out << "gradem lab: " << lab.sands.size() << " sieve analyses\n";
+    else {
+        out << "gradem lab: " << lab.dataset << " (" << lab.source << ")";
+        if (!lab.cubes.empty() || lab.tensile_tests.empty()) out << ", " << lab.cubes.size() << " cubes";
+        if (!lab.tensile_tests.empty()) out << ", " << lab.tensile_tests.size() << " tensile specimens";
+        out << "\n";
+    }
     if (lab.representative)
         out << "*** REPRESENTATIVE DATA, NOT MEASUREMENTS: " << (lab.note.empty() ? "see the dataset README" : lab.note) << " ***\n";
     print_gradation(out, lab);
-    if (lab.cubes.empty()) return;  // sieve analyses only: no strength statistics
-    print_statistics(out, lab);
+    if (lab.cubes.empty() && lab.tensile_tests.empty()) return;  // sieve analyses only: no strength statistics
+    if (!lab.cubes.empty()) print_statistics(out, lab);
+    if (!lab.tensile_tests.empty()) print_tensile(out, lab);
+    print_comparisons(out, lab);
     print_flags(out, lab);
-    if (per_cube) print_cubes(out, lab);
+    if (per_cube && !lab.cubes.empty()) print_cubes(out, lab);
+    if (per_cube && !lab.tensile_tests.empty()) print_tensile_tests(out, lab);
 }
 
 }  // namespace gradem::lab

@@ -20,18 +20,21 @@ std::string cubes_csv(const LabStats& lab);
 std::string sand_stats_csv(const LabStats& lab);
 std::string gradation_csv(const LabStats& lab);
 std::string comparisons_csv(const LabStats& lab);
+/// One row per tension specimen: test, peak load, geometry (mm), strength, MC2010 factor, direct equivalent.
+std::string tensile_tests_csv(const LabStats& lab);
 /// Each cube's stress-strain curve for plots: every k-th sample (at most kCurvePointsPerCube per
 /// cube) plus the peak sample, so a curve's largest stress is the cube's peak stress.
 inline constexpr std::size_t kCurvePointsPerCube = 200;
 std::string curves_csv(const LabStats& lab);
 
-/// Writes lab_results.json, cubes.csv, sand_stats.csv, gradation.csv, comparisons.csv, curves.csv into
+/// Writes lab_results.json, cubes.csv, tensile_tests.csv, sand_stats.csv, gradation.csv, comparisons.csv, curves.csv into
 /// `dir` (created if needed). Each file is written to a temporary name first and renamed only
 /// once all are complete, so a failure leaves no partial result behind.
 void write_lab_outputs(const std::filesystem::path& dir, const LabStats& lab);
 
 /// Table 2 (gradation), gradation indices and C144 verdicts, Table 4 (strength) and the other
-/// per-sand statistics, Welch tests, C109 range flags; `per_cube` adds one row per cube.
+/// per-sand statistics, the tensile strengths, Welch tests, C109 range flags; `per_cube` adds one
+/// row per cube and per tension specimen.
 void print_lab_report(std::ostream& out, const LabStats& lab, bool per_cube);
 
 }  // namespace gradem::lab

@@ -14,7 +14,7 @@ repo="$(cd "$here/../.." && pwd)"
 build="${GRADEM_FUZZ_BUILD:-$repo/build-fuzz}"
 seconds="${GRADEM_FUZZ_SECONDS:-20}"
 jobs="${GRADEM_FUZZ_JOBS:-2}"
-targets=(mts_testsuite mts793 bluehill plain_csv autodetect sieve_table)
+targets=(mts_testsuite mts793 bluehill plain_csv autodetect sieve_table tension)
 
 command -v clang++ >/dev/null || { echo "run_fuzz: clang++ not found (apt-get install clang)" >&2; exit 2; }
 CXX=clang++ cmake -S "$repo" -B "$build" -DGRADEM_FUZZ=ON -DGRADEM_OPENMP=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
@@ -29,6 +29,8 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$artifacts"
   if [ "$t" = sieve_table ]; then
     cp "$fixtures"/sieve_*.csv "$fixtures"/sieve_layouts/*.csv "$study"/sieve_*.csv "$study"/astm_c144_*.csv "$corpus"/
+  elif [ "$t" = tension ]; then
+    cp "$fixtures"/tension/*.csv "$fixtures"/*.csv "$corpus"/
   else
     cp "$fixtures"/*.csv "$fixtures"/*.dat "$corpus"/
     cp "$study"/cubes/PB1-C01.csv "$corpus"/

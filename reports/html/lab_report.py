@@ -1,5 +1,6 @@
 """report.html of `gradem lab`: gradation against the ASTM C144 band, the cubes' stress–strain
-curves per sand, the spread of the reduced quantities, and the tables of lab_results.json.
+curves per sand, the spread of the reduced quantities, the tension specimens' strengths per sand
+(when there are any), and the tables of lab_results.json.
 Inputs: lab_results.json (required) and curves.csv (the curves; a figure says so if absent)."""
 
 import math
@@ -20,12 +21,15 @@ def build(out_dir):
     lab = read_json(path)
     sands = field(lab, "sands", path, list)
     cubes = field(lab, "cubes", path, list)
+    tensile = lab.get("tensile_tests") or []  # absent in results written before tension tests
     for k, s in enumerate(sands):
         field(s, "name", f"{path} (sands[{k}])", str)
     curves = read_curves(out_dir)
 
+    counts = ", ".join(([f"{len(cubes)} cubes"] if cubes or not tensile else []) +
+                       ([f"{len(tensile)} tension specimens"] if tensile else []))
     page = Page(f"gradem lab report: {lab.get('dataset') or 'lab data'}",
-                f"{len(cubes)} cubes, {len(sands)} sand(s); source {lab.get('source', '?')}; folder {os.path.abspath(out_dir)}")
+                f"{counts}, {len(sands)} sand(s); source {lab.get('source', '?')}; folder {os.path.abspath(out_dir)}")
     if lab.get("representative_data"):
         page.banner(lab.get("note") or "at least one input file says its data are representative (synthetic).")
     page.cards(headline(sands))
@@ -43,29 +47,50 @@ def build(out_dir):
         if violations:
             page.notes([f"{s['name']}: C144 — {v}" for v in violations])
 
-    page.section("Cube compression curves", "Each cube's stress–strain curve as read from its load-frame export.")
-    page.figure(curves_figure(sands, cubes, curves), "Lab stress–strain curves per sand",
-                "Axial stress vs extensometer strain of every cube (thin lines, one colour per batch); dashed black: the "
-                "Popovics (1973) curve through the sand's mean chord modulus, peak stress and strain at peak.")
-
-    page.section("Strength and stiffness", "The quantities calibration uses, cube by cube, with their means and spread.")
-    page.figure(spread_figure(sands, cubes, lab.get("comparisons") or []), "Peak stress, chord modulus and strain at peak by sand",
-                "Dots: cubes (open: the cube ASTM C109's permissible range says to discard; it is still counted); bar and "
-                "whiskers: mean ± 1 sample standard deviation; p: Welch two-sided test between the first two sands.")
-    page.table(*statistics_table(sands), caption="Per-sand statistics: sample standard deviation (n − 1), all cubes included.",
-               text_columns=(0, 1))
     comparisons = lab.get("comparisons") or []
-    if comparisons:
-        page.table(*comparisons_table(comparisons), caption="Welch t-tests between the sands (mean difference a − b).",
-                   text_columns=(0, 1, 2))
-    range_rows, bad = c109_table(sands)
-    if range_rows:
-        page.table(["sand", "batch", "cubes", "mean [MPa]", "range [% of mean]", "permissible [%]", "verdict"], range_rows,
-                   caption="ASTM C109 permissible range of cubes of one batch (highlighted: exceeded).", text_columns=(0, 1, 2, 6),
-                   bad_rows=bad)
-    page.section("All cubes")
-    page.table(*cubes_table(cubes), caption="One row per cube (flags: what the reduction noticed; highlighted: flagged).",
-               text_columns=(0, 1, 2, 9), bad_rows=[i for i, c in enumerate(cubes) if c.get("flags")])
+    if cubes or not tensile:  # tension specimens alone: no cube sections
+        page.section("Cube compression curves", "Each cube's stress–strain curve as read from its load-frame export.")
+        page.figure(curves_figure(sands, cubes, curves), "Lab stress–strain curves per sand",
+                    "Axial stress vs extensometer strain of every cube (thin lines, one colour per batch); dashed black: the "
+                    "Popovics (1973) curve through the sand's mean chord modulus, peak stress and strain at peak.")
+
+        page.section("Strength and stiffness", "The quantities calibration uses, cube by cube, with their means and spread.")
+        page.figure(spread_figure(sands, cubes, lab.get("comparisons") or []), "Peak stress, chord modulus and strain at peak by sand",
+                    "Dots: cubes (open: the cube ASTM C109's permissible range says to discard; it is still counted); bar and "
+                    "whiskers: mean ± 1 sample standard deviation; p: Welch two-sided test between the first two sands.")
+        page.table(*statistics_table(sands), caption="Per-sand statistics: sample standard deviation (n − 1), all cubes included.",
+                   text_columns=(0, 1))
+        if comparisons:
+            page.table(*comparisons_table(comparisons), caption="Welch t-tests between the sands (mean difference a − b).",
+                       text_columns=(0, 1, 2))
+        range_rows, bad = c109_table(sands)
+        if range_rows:
+            page.table(["sand", "batch", "cubes", "mean [MPa]", "range [% of mean]", "permissible [%]", "verdict"], range_rows,
+                       caption="ASTM C109 permissible range of cubes of one batch (highlighted: exceeded).", text_columns=(0, 1, 2, 6),
+                       bad_rows=bad)
+        page.section("All cubes")
+        page.table(*cubes_table(cubes), caption="One row per cube (flags: what the reduction noticed; highlighted: flagged).",
+                   text_columns=(0, 1, 2, 9), bad_rows=[i for i, c in enumerate(cubes) if c.get("flags")])
+    if tensile:
+        page.section("Tensile strength", "Splitting (ASTM C496) and flexural (ASTM C348) strengths of the tension specimens, and "
+                     "the direct tensile strength they stand for (fib Model Code 2010 5.1.5.1), which calibration fits.")
+        page.figure(tensile_figure(sands, tensile), "Tensile strength of the specimens, per sand",
+                    "Dots: specimens (left: splitting T = 2P/(πld); middle: flexural Sf = 3PL/(2bd²); right: direct equivalent "
+                    "α·strength, α_sp = 1.0, α_fl = 0.06h^0.7/(1 + 0.06h^0.7), both kinds pooled); box: quartiles and median; "
+                    "black square and whiskers: mean ± 1 sample standard deviation.")
+        page.table(*tensile_table(tensile), caption="One row per tension specimen (geometry from the export, the dataset or "
+                   "ASTM C348; highlighted: flagged).", text_columns=(0, 1, 2, 3, 5, 9),
+                   bad_rows=[i for i, t in enumerate(tensile) if t.get("flags")])
+        conversions = [f"{s['name']}: {stat(s, 'tensile_strength_mpa').get('conversion')}" for s in sands
+                       if stat(s, "tensile_strength_mpa").get("conversion")]
+        if conversions:
+            page.notes(conversions)
+    if not cubes and tensile:
+        page.table(*statistics_table(sands), caption="Per-sand statistics: sample standard deviation (n − 1).",
+                   text_columns=(0, 1))
+        if comparisons:
+            page.table(*comparisons_table(comparisons), caption="Welch t-tests between the sands (mean difference a − b).",
+                       text_columns=(0, 1, 2))
     definitions = lab.get("definitions") or {}
     if definitions:
         page.section("Definitions")
@@ -108,6 +133,12 @@ def popovics(e_mpa, peak_mpa, strain_peak, strains):
 def headline(sands):
     items = []
     for s in sands:
+        tensile = stat(s, "tensile_strength_mpa")
+        if tensile:
+            items.append((f"{s['name']}: direct tensile strength", f"{fixed(tensile.get('mean'), 2)}{spread(tensile.get('std'), 2)} MPa",
+                          f"n = {tensile.get('n', '?')}, CV {pct(tensile.get('cv'), signed=False)} (fib MC2010)", ""))
+            if not s.get("n"):
+                continue  # no cubes: no compression cards
         peak, chord, eps = stat(s, "peak_stress_mpa"), stat(s, "chord_modulus_mpa"), stat(s, "strain_at_peak")
         items.append((f"{s['name']}: peak stress", f"{fixed(peak.get('mean'), 1)}{spread(peak.get('std'), 1)} MPa",
                       f"n = {s.get('n', '?')}, CV {pct(peak.get('cv'), signed=False)}", ""))
@@ -252,7 +283,59 @@ def spread_figure(sands, cubes, comparisons):
     return to_svg(fig)
 
 
+TENSILE_STRIPS = [("splitting", "splitting\n(C496)", "o"), ("flexural", "flexural\n(C348)", "s"),
+                  (None, "direct\nequivalent", "D")]
+
+
+def tensile_figure(sands, tensile):
+    """One panel per sand with tension specimens: strips of splitting, flexural and direct-equivalent strengths."""
+    tested = [(k, s) for k, s in enumerate(sands) if any(t.get("sand") == s["name"] for t in tensile)]
+    fig, axes = new_figure(max(1, len(tested)), width=10.0, height=4.2, sharey=True)
+    rng = np.random.default_rng(11)  # fixed jitter: the same page for the same data
+    for ax, (k, s) in zip(axes, tested):
+        mine = [t for t in tensile if t.get("sand") == s["name"]]
+        color = sand_color(k)
+        for x, (kind, _, marker) in enumerate(TENSILE_STRIPS):
+            key = "direct_equivalent_mpa" if kind is None else "strength_mpa"
+            values = [finite(t.get(key)) for t in mine if kind is None or t.get("test") == kind]
+            values = [v for v in values if math.isfinite(v)]
+            if not values:
+                continue
+            ax.boxplot([values], positions=[x], widths=0.45, showfliers=False, patch_artist=True,
+                       boxprops={"facecolor": "#eef1f5", "edgecolor": "#8a919c"}, medianprops={"color": "#5b6475"},
+                       whiskerprops={"color": "#8a919c"}, capprops={"color": "#8a919c"})
+            ax.plot(x + rng.uniform(-0.12, 0.12, len(values)), values, marker, ms=5, color=color, alpha=0.9, ls="none")
+            m = float(np.mean(values))
+            sd = float(np.std(values, ddof=1)) if len(values) > 1 else float("nan")
+            ax.errorbar([x + 0.32], [m], yerr=[sd] if math.isfinite(sd) else None, fmt="s", color="black", ms=5, capsize=4, lw=1.4)
+        ax.set_xticks(range(len(TENSILE_STRIPS)))
+        ax.set_xticklabels([label for _, label, _ in TENSILE_STRIPS])
+        ax.set_xlim(-0.6, len(TENSILE_STRIPS) - 0.3)
+        ax.set_ylim(bottom=0)
+        ax.grid(axis="x", visible=False)
+        ax.set_title(f"{s['name']} ({len(mine)} specimens)")
+    if not tested:
+        message_panel(axes[0], "no tension specimens in these lab results")
+    axes[0].set_ylabel("tensile strength [MPa]")
+    return to_svg(fig)
+
+
 # ----------------------------------------------------------------------------- tables
+
+def tensile_table(tensile):
+    headers = ["file", "sand", "batch", "test", "peak load [kN]", "geometry [mm]", "strength [MPa]", "α", "direct [MPa]", "flags"]
+    rows = []
+    for t in tensile:
+        if t.get("test") == "splitting":
+            geometry = f"d {fmt(t.get('diameter_mm'), 4)}, l {fmt(t.get('length_mm'), 4)}"
+        else:
+            geometry = f"{fmt(t.get('width_mm'), 4)} × {fmt(t.get('depth_mm'), 4)}, span {fmt(t.get('span_mm'), 4)}"
+        rows.append([t.get("file", ""), t.get("sand", ""), t.get("batch", ""), t.get("test", ""),
+                     fmt(finite(t.get("peak_load_n")) / 1e3, 4), f"{geometry} ({t.get('geometry_source', '')})",
+                     fmt(t.get("strength_mpa"), 4), fmt(t.get("conversion_factor"), 4), fmt(t.get("direct_equivalent_mpa"), 4),
+                     "; ".join(t.get("flags") or [])])
+    return headers, rows
+
 
 def gradation_table(sands):
     headers = ["sand", "D10 [mm]", "D30 [mm]", "D50 [mm]", "D60 [mm]", "Cu", "Cc", "fineness modulus", "USCS", "C144"]
@@ -270,13 +353,16 @@ def gradation_table(sands):
 def statistics_table(sands):
     quantities = [("peak_stress_mpa", "peak stress [MPa]", 1.0, 3), ("chord_modulus_mpa", "chord modulus [MPa]", 1.0, 4),
                   ("tangent_modulus_mpa", "tangent modulus [MPa]", 1.0, 4), ("strain_at_peak", "strain at peak [‰]", 1e3, 3),
-                  ("strain_at_peak_crosshead", "crosshead strain at peak [‰]", 1e3, 3)]
+                  ("strain_at_peak_crosshead", "crosshead strain at peak [‰]", 1e3, 3),
+                  ("splitting_tensile_strength_mpa", "splitting tensile strength [MPa]", 1.0, 3),
+                  ("flexural_strength_mpa", "flexural strength [MPa]", 1.0, 3),
+                  ("tensile_strength_mpa", "direct tensile strength [MPa]", 1.0, 3)]
     headers = ["sand", "quantity", "n", "mean", "std", "CV", "min", "max"]
     rows = []
     for s in sands:
         for key, label, scale, digits in quantities:
             st = stat(s, key)
-            if not st:
+            if not st or not st.get("n"):
                 continue
             rows.append([s["name"], label, st.get("n", ""), fmt(finite(st.get("mean")) * scale, digits),
                          fmt(finite(st.get("std")) * scale, 3), pct(st.get("cv"), signed=False), fmt(finite(st.get("min")) * scale, digits),
@@ -287,7 +373,8 @@ def statistics_table(sands):
 def comparisons_table(comparisons):
     headers = ["quantity", "sand a", "sand b", "n a", "n b", "mean difference", "Welch t", "dof", "p", "Hedges g"]
     names = {"peak_stress_mpa": "peak stress [MPa]", "strain_at_peak": "strain at peak [-]",
-             "chord_modulus_mpa": "chord modulus [MPa]", "tangent_modulus_mpa": "tangent modulus [MPa]"}
+             "chord_modulus_mpa": "chord modulus [MPa]", "tangent_modulus_mpa": "tangent modulus [MPa]",
+             "tensile_strength_mpa": "direct tensile strength [MPa]"}
     rows = [[names.get(c.get("quantity"), c.get("quantity")), c.get("sand_a"), c.get("sand_b"), c.get("n_a"), c.get("n_b"), fmt(c.get("mean_difference"), 4),
              fmt(c.get("welch_t"), 3), fmt(c.get("dof"), 3), "< 0.0001" if finite(c.get("p_value")) < 1e-4 else fmt(c.get("p_value"), 2),
              fmt(c.get("hedges_g"), 3)] for c in comparisons]

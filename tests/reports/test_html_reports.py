@@ -9,7 +9,7 @@ without a browser: missing python3 or matplotlib, bad input, no half-written or 
 
     /usr/bin/python3 test_html_reports.py CASE --gradem BUILD/app/gradem --source SOURCE_DIR
 
-CASE: checker | lab | compress | calibrate | study | failures. Exit 0 pass, 1 fail, 77 skipped (no
+CASE: checker | lab | lab_tension | compress | calibrate | study | failures. Exit 0 pass, 1 fail, 77 skipped (no
 chromium; with GRADEM_REQUIRE_BROWSER=1 a missing browser is a failure instead).
 """
 
@@ -24,7 +24,7 @@ import sys
 import tempfile
 
 SKIP = 77
-EXPECTED_FIGURES = {"lab": 3, "compress": 4, "calibrate": 4}
+EXPECTED_FIGURES = {"lab": 3, "lab_tension": 2, "compress": 4, "calibrate": 4}
 # figures of the study report per study kind (reports/html/study_report.py)
 STUDY_FIGURES = {"gradation_effect": 2, "sensitivity": 1, "resolution": 1, "fines_truncation": 2, "model_form": 3}
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -155,6 +155,22 @@ def case_lab(args, browser, work):
     page = os.path.join(out, "report.html")
     check_self_contained(page)
     return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["lab"], banner=True)
+
+
+def case_lab_tension(args, browser, work):
+    """Tension specimens alone (the generated two-sand fixture dataset): the gradation panel and
+    the tensile-strength figure, no cube sections, the specimens' table."""
+    out = os.path.join(work, "lab_tension")
+    r = run([args.gradem, "lab", os.path.join(args.source, "tests/lab_data/fixtures/tension_dataset"), "--out", out])
+    check(r.returncode == 0, f"gradem lab failed ({r.returncode}): {r.stderr[-800:]}")
+    page = os.path.join(out, "report.html")
+    check(os.path.isfile(page), f"no {page}")
+    text = open(page, encoding="utf-8").read()
+    check("Tensile strength of the specimens, per sand" in text, f"{page}: no tensile-strength figure")
+    check("Cube compression curves" not in text, f"{page}: cube sections without cubes")
+    check("A-F1.csv" in text and "direct tensile strength" in text, f"{page}: no tension specimens' table or statistics")
+    check_self_contained(page)
+    return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["lab_tension"], banner=True)
 
 
 def make_calibration(args, work):
@@ -324,9 +340,9 @@ def case_failures(args, browser, work):
     check(r.returncode == 2 and "expected lab, compress, calibrate or study" in r.stderr, f"bad kind: {r.returncode} {r.stderr[-300:]}")
 
 
-CASES = {"checker": case_checker, "lab": case_lab, "compress": case_compress, "calibrate": case_calibrate,
-         "study": case_study, "failures": case_failures}
-NEEDS_BROWSER = {"checker", "lab", "compress", "calibrate", "study"}
+CASES = {"checker": case_checker, "lab": case_lab, "lab_tension": case_lab_tension, "compress": case_compress,
+         "calibrate": case_calibrate, "study": case_study, "failures": case_failures}
+NEEDS_BROWSER = {"checker", "lab", "lab_tension", "compress", "calibrate", "study"}
 
 
 def main():
