@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <tuple>
 
 #include "calibrate/objective.hpp"
 #include "calibrate/problem.hpp"
@@ -12,6 +13,8 @@
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 #include "experiments/cube_config.hpp"
+#include "lab_data/lab_stats.hpp"
+#include "reports/lab_report.hpp"
 #include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;
@@ -180,4 +183,36 @@ TEST_CASE("bad tension targets are refused naming the key, line and rule", "[cal
     CHECK_THROWS_WITH(cal::load_calibration_problem(dir.path / "no_tensile.toml"),
                       Catch::Contains("no_tensile.toml:") && Catch::Contains("has no tensile_strength_mpa") &&
                           Catch::Contains("assumed_ratio"));
+}
+
+TEST_CASE("from lab files to the tension target: splitting and flexural exports become the calibration's σt", "[calibrate][tension]") {
+    // The study's cubes and sieve analyses with the GENERATED tensile fixtures of tests/lab_data,
+    // as one dataset: `gradem lab` reduces them, the calibration reads their direct equivalent.
+    TempDir dir("cal-tension-from-files");
+    const fs::path study = fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study";
+    const fs::path tension = fs::path(GRADEM_SOURCE_DIR) / "tests" / "lab_data" / "fixtures" / "tension";
+    std::string toml = "[dataset]\nname = \"cubes and tensile fixtures\"\nrepresentative = true\n";
+    for (const auto& [sand, sieve, cubes, letter] :
+         {std::tuple<std::string, std::string, std::string, std::string>{"pre-blended", "sieve_pre_blended.csv", "PB1", "A"},
+          {"Van Buren", "sieve_van_buren.csv", "VB1", "B"}}) {
+        toml += "[[sand]]\nname = \"" + sand + "\"\nsieve = \"" + (study / sieve).string() + "\"\n";
+        toml += "  [[sand.batch]]\n  name = \"" + cubes + "\"\n  files = \"" + (study / "cubes" / (cubes + "-*.csv")).string() + "\"\n";
+        toml += "  [[sand.tension]]\n  name = \"" + letter + "F\"\n  test = \"flexural\"\n  files = \"" +
+                (tension / (letter + "-F*.csv")).string() + "\"\n";
+    }
+    test::write_text(dir.path / "dataset.toml", toml);
+    const lab::LabStats stats = lab::analyse_lab_dataset(dir.path / "dataset.toml");
+    test::write_text(dir.path / "lab_results.json", lab::lab_stats_to_json(stats).dump(1));
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(
+        test::write_problem(dir.path, "model = \"analytic\"\n", "tension = \"lab\"\n[output]\ndir = \"out\"\n"));
+    REQUIRE(problem.targets.size() == 2);
+    for (std::size_t s = 0; s < 2; ++s) {
+        const lab::SandResult& sand = stats.sands.at(s);
+        INFO(sand.name);
+        REQUIRE(sand.tensile_stats.direct_pa.n > 0);
+        CHECK(problem.targets[s].tension.n == static_cast<int>(sand.tensile_stats.direct_pa.n));
+        CHECK(problem.targets[s].tension.mean == Approx(sand.tensile_stats.direct_pa.mean).epsilon(1e-9));
+        CHECK(problem.targets[s].tension.mean > 0.5e6);
+        CHECK(problem.targets[s].tension.mean < problem.targets[s].peak.mean);
+    }
 }
