@@ -181,7 +181,6 @@ inline int run_command(const CommandInfo& info, Command& command, std::vector<st
     try {
         OutputOptions output;
         const auto app = make_app(info, command, output);
-        app->get_formatter()->column_width(24);
         try {
             cli_detail::refuse_unknown_options(*app, args);
         } catch (const std::invalid_argument& e) {
