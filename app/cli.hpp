@@ -3,9 +3,10 @@
 // declares its arguments and options on a CLI::App (CLI11, Debian libcli11-dev, header-only)
 // and runs once they are parsed; run_command() adds what every command takes (--quiet, --json,
 // -h/--help), parses, runs, and turns every error into a message on stderr and the exit status
-// of common/exit_status.hpp: 1 bad input (common::InputError, or any error before the command
-// said its inputs were checked), 2 bad usage (UsageError, CLI11's parse errors), 3 a failed run
-// (the command's own status, or an error after its inputs were checked). The --help text and
+// of common/exit_status.hpp: 1 bad input (common::InputError, std::invalid_argument, or any
+// error before the command said its inputs were checked), 2 bad usage (UsageError, CLI11's parse
+// errors), 3 a failed run (the command's own status, or another error after its inputs were
+// checked, e.g. genesis diverged). The --help text and
 // the top-level usage are made here from the command table (app/command_table.hpp) and the
 // declared options, in one style.
 #include <CLI/CLI.hpp>
@@ -201,6 +202,9 @@ inline int run_command(const CommandInfo& info, Command& command, std::vector<st
         std::cerr << who << ": " << e.what() << " (see " << who << " --help)\n";
         return common::exit_bad_usage;
     } catch (const common::InputError& e) {
+        std::cerr << who << ": " << e.what() << "\n";
+        return common::exit_bad_input;
+    } catch (const std::invalid_argument& e) {  // a value the work cannot start from (e.g. genesis' target)
         std::cerr << who << ": " << e.what() << "\n";
         return common::exit_bad_input;
     } catch (const std::exception& e) {

@@ -68,7 +68,8 @@ private:
 
 /// A program's main: returns what `body` returns; an error is "<program>: what" on stderr and
 /// exit status 2 (UsageError, with a pointer to --help), 1 (common::InputError: a config or
-/// file) or 3 (any other: the run failed).
+/// file; std::invalid_argument: a value the work cannot start from) or 3 (any other: the run
+/// failed).
 template <class Body>
 int run_main(const char* program, Body&& body) {
     try {
@@ -77,6 +78,9 @@ int run_main(const char* program, Body&& body) {
         std::fprintf(stderr, "%s: %s (see %s --help)\n", program, e.what(), program);
         return common::exit_bad_usage;
     } catch (const common::InputError& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return common::exit_bad_input;
+    } catch (const std::invalid_argument& e) {  // a value the work cannot start from
         std::fprintf(stderr, "%s: %s\n", program, e.what());
         return common::exit_bad_input;
     } catch (const std::exception& e) {
