@@ -1,31 +1,37 @@
 #pragma once
-// The subcommands of the `gradem` executable. Each takes the arguments after its name and
-// returns the process exit code; bad usage throws UsageError (exit 2).
-#include <cstdint>
+// The commands of the `gradem` executable (rows of app/command_table.hpp), each made by its
+// factory; `gradem lab`'s is in app/lab_command.hpp.
 #include <filesystem>
+#include <memory>
 #include <ostream>
-#include <stdexcept>
 #include <string>
-#include <vector>
+#include <string_view>
+
+#include "app/cli.hpp"
 
 namespace gradem::app {
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-/// Parses an integer option value in [lo, hi]; UsageError naming the option otherwise.
-std::int64_t parse_int(const std::string& option, const std::string& value, std::int64_t lo,
-                       std::int64_t hi);
-
-int run_quick_cube(const std::vector<std::string>& args);
-int run_specimen(const std::vector<std::string>& args);
-int run_compress(const std::vector<std::string>& args);
-int run_calibrate(const std::vector<std::string>& args);
-int run_study(const std::vector<std::string>& args);
-int run_report(const std::vector<std::string>& args);
+std::unique_ptr<Command> make_quick_cube_command();
+std::unique_ptr<Command> make_specimen_command();
+std::unique_ptr<Command> make_compress_command();
+std::unique_ptr<Command> make_tension_command();
+std::unique_ptr<Command> make_calibrate_command();
+std::unique_ptr<Command> make_study_command();
+std::unique_ptr<Command> make_report_command();
 /// `gradem lab`'s report.html, called by the lab command once its outputs are written.
 void write_lab_report(const std::filesystem::path& out_dir, std::ostream& announce);
-int run_tension(const std::vector<std::string>& args);
+
+/// A command's name (as in the table) and its factory.
+struct CommandFactory {
+    std::string_view name;
+    std::unique_ptr<Command> (*make)();
+};
+
+/// The factory of the command `name`, or nullptr.
+const CommandFactory* find_command(std::string_view name);
+
+/// The top-level usage (gradem --help, and on stderr for a bare `gradem`): every command of the
+/// table with its summary and synopsis, the options every command takes, the exit status.
+std::string top_level_usage();
 
 }  // namespace gradem::app

@@ -1,13 +1,15 @@
 #include "app/lab_command.hpp"
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
+#include <utility>
 
+#include "app/cli.hpp"
 #include "common/input_error.hpp"
 #include "lab_data/text.hpp"
 #include "reports/lab_report.hpp"
@@ -17,14 +19,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using UsageError = app::UsageError;
 
 struct CommandLine {
     std::vector<std::string> inputs;
     fs::path out = "lab_out";
-    bool write = true, json = false, per_cube = false;
+    bool write = true, per_cube = false;
     std::optional<fs::path> config;
     fs::path c144;
     std::optional<std::string> format;
@@ -36,57 +36,21 @@ struct CommandLine {
 // The geometry options of tension exports: option, the test it belongs to, TensileGeometry field.
 struct DimensionOption {
     const char* option;
+    const char* help;
     TensileTestKind test;
     double TensileGeometry::*field;
 };
-const DimensionOption kDimensionOptions[] = {{"--diameter-mm", TensileTestKind::splitting, &TensileGeometry::diameter_m},
-                                             {"--length-mm", TensileTestKind::splitting, &TensileGeometry::length_m},
-                                             {"--width-mm", TensileTestKind::flexural, &TensileGeometry::width_m},
-                                             {"--depth-mm", TensileTestKind::flexural, &TensileGeometry::depth_m},
-                                             {"--span-mm", TensileTestKind::flexural, &TensileGeometry::span_m}};
+const DimensionOption kDimensionOptions[] = {
+    {"--diameter-mm", "splitting: cylinder diameter where the export does not state it", TensileTestKind::splitting, &TensileGeometry::diameter_m},
+    {"--length-mm", "splitting: cylinder length where the export does not state it", TensileTestKind::splitting, &TensileGeometry::length_m},
+    {"--width-mm", "flexural: prism width where the export does not state it (default 40, ASTM C348)", TensileTestKind::flexural, &TensileGeometry::width_m},
+    {"--depth-mm", "flexural: prism depth where the export does not state it (default 40, ASTM C348)", TensileTestKind::flexural, &TensileGeometry::depth_m},
+    {"--span-mm", "flexural: support span where the export does not state it (default 120, ASTM C348)", TensileTestKind::flexural, &TensileGeometry::span_m}};
 
 std::pair<std::string, std::string> role_value(const std::string& opt, const std::string& arg) {
     const auto eq = arg.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError(opt + " expects ROLE=VALUE, got '" + arg + "'");
     return {arg.substr(0, eq), arg.substr(eq + 1)};
-}
-
-CommandLine parse(std::vector<std::string> args) {
-    CommandLine c;
-    std::vector<std::string> columns, units;
-    std::string format, test;
-    std::map<std::string, double> dimensions;
-    fs::path config;
-    CLI::App app{"Lab statistics from sieve analyses and load-frame exports.", "gradem lab"};
-    app.set_help_flag();  // the usage text below is the help
-    app.add_option("inputs", c.inputs)->required();
-    app.add_option("--out", c.out);
-    app.add_flag("--no-write", [&c](std::int64_t) { c.write = false; });
-    app.add_flag("--json", c.json);
-    app.add_flag("--cubes", c.per_cube);
-    app.add_option("--config", config);
-    app.add_option("--format", format);
-    app.add_option("--c144", c.c144);
-    app.add_option("--column", columns)->allow_extra_args(false);
-    app.add_option("--unit", units)->allow_extra_args(false);
-    app.add_option("--test", test);
-    for (const auto& d : kDimensionOptions) app.add_option(d.option, dimensions[d.option]);
-    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last-first
-    try {
-        app.parse(args);
-    } catch (const CLI::RequiredError&) {
-        throw UsageError("no input: give a dataset folder, a dataset .toml, or export files");
-    } catch (const CLI::ParseError& e) {
-        throw UsageError(e.what());
-    }
-    if (!config.empty()) c.config = config;
-    if (!format.empty()) c.format = format;
-    if (!test.empty()) c.test = test;
-    for (const auto& d : kDimensionOptions)
-        if (app.count(d.option)) c.dimensions_mm[d.option] = dimensions[d.option];
-    for (const auto& v : columns) c.columns.push_back(role_value("--column", v));
-    for (const auto& v : units) c.units.push_back(role_value("--unit", v));
-    return c;
 }
 
 bool is_dataset(const std::string& input) {
@@ -162,18 +126,50 @@ LabStats analyse(const CommandLine& c) {
     return analyse_lab_files(files, options_for_files(c));
 }
 
-}  // namespace
 
-const char* lab_command_usage() {
-    return R"(usage: gradem lab [options] <dataset folder | dataset.toml | export file...>
+class LabCommand final : public app::Command {
+public:
+    explicit LabCommand(AfterLabOutputs after_outputs) : after_outputs_(std::move(after_outputs)) {}
 
-Reads lab data and reduces it to the statistics calibration uses.
+    void declare(CLI::App& app) override {
+        app.add_option("inputs", c_.inputs, "a dataset folder (holding dataset.toml), a dataset .toml, export files or sieve analysis files")
+            ->required()
+            ->type_name("input");
+        out_ = app.add_option("--out", c_.out,
+                              "write lab_results.json, cubes.csv, tensile_tests.csv, sand_stats.csv, gradation.csv, comparisons.csv and curves.csv "
+                              "into DIR (default: ./lab_out; with --json, none unless --out is given), atomically; then "
+                              "report.html (figures)")
+                   ->type_name("DIR");
+        app.add_flag_function("--no-write", [this](std::int64_t) { c_.write = false; }, "write no files");
+        app.add_flag("--cubes", c_.per_cube, "also print one row per cube (and per tension specimen)");
+        app.add_option("--config", config_, "for export files: a TOML with [specimen], [reduction], [columns]")->type_name("FILE");
+        app.add_option("--format", format_, "for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv")
+            ->type_name("NAME");
+        app.add_option("--c144", c_.c144,
+                       "for sieve analyses: ASTM C144 limits CSV to check them against "
+                       "(e.g. lab_data/datasets/study/astm_c144_natural_sand.csv)")
+            ->type_name("FILE");
+        app.add_option("--column", columns_,
+                       "for export files: take column NAME as ROLE (time, load, crosshead, strain, lateral_strain, stress)")
+            ->allow_extra_args(false)
+            ->type_name("ROLE=NAME");
+        app.add_option("--unit", units_, "for export files: unit of ROLE's column (e.g. load=kN)")
+            ->allow_extra_args(false)
+            ->type_name("ROLE=UNIT");
+        app.add_option("--test", test_,
+                       "for export files: they are tension tests, KIND splitting (ASTM C496 cylinders) or flexural "
+                       "(ASTM C348 prisms, centre-point loading); without it an export is a C109 cube")
+            ->type_name("KIND");
+        for (const auto& d : kDimensionOptions) dimension_options_.push_back(app.add_option(d.option, dimensions_[d.option], d.help)->type_name("MM"));
+    }
+
+    [[nodiscard]] std::string details() const override {
+        return R"(Reads lab data and reduces it to the statistics calibration uses.
   dataset folder (holding dataset.toml) or a .toml file:
       sieve analyses and cube exports by sand and batch -> Table 2 (gradation, D-values,
       Cu, Cc, USCS, fineness modulus, ASTM C144 verdicts) and Table 4-style statistics
       (ASTM C109 strength, strain at peak, ASTM C469 chord modulus), Welch t-tests
-      between sands, ASTM C109 permissible-range flags; [[sand.tension]] splitting and
-      flexural exports -> tensile strengths and their direct-tension equivalent.
+      between sands, ASTM C109 permissible-range flags.
   sieve analysis files (CSV/TSV, any delimiter, decimal commas; a sieve or opening column
       - US/ISO designations, mm, um or in - and percent passing, cumulative or individual
       retained, or retained masses with a Pan row; several sands as columns, FILE#sand picks
@@ -185,59 +181,49 @@ Reads lab data and reduces it to the statistics calibration uses.
       with --test as a tension test: peak load -> ASTM C496 splitting tensile strength
       T = 2P/(pi l d) or ASTM C348 flexural strength Sf = 3PL/(2bd^2), and the fib Model Code
       2010 direct tensile strength (1.0 x T; 0.06h^0.7/(1 + 0.06h^0.7) x Sf, h in mm).
-
-options:
-  --out DIR           write lab_results.json, cubes.csv, tensile_tests.csv, sand_stats.csv,
-                      gradation.csv, comparisons.csv and curves.csv into DIR (default:
-                      ./lab_out), written atomically; then report.html (figures) when run by gradem
-  --no-write          write no files
-  --json              print lab_results.json to stdout instead of the tables
-  --cubes             also print one row per cube (and per tension specimen)
-  --config FILE       for export files: a TOML with [specimen], [reduction], [columns]
-  --format NAME       for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv
-  --c144 FILE         for sieve analyses: ASTM C144 limits CSV to check them against
-                      (e.g. lab_data/datasets/study/astm_c144_natural_sand.csv)
-  --column ROLE=NAME  for export files: take column NAME as ROLE
-                      (time, load, crosshead, strain, lateral_strain, stress)
-  --unit ROLE=UNIT    for export files: unit of ROLE's column (e.g. load=kN)
-  --test KIND         for export files: they are tension tests, KIND splitting (ASTM C496
-                      cylinders) or flexural (ASTM C348 prisms, centre-point loading)
-  --diameter-mm D, --length-mm L
-                      splitting: cylinder dimensions where the export does not state them
-  --width-mm B, --depth-mm D, --span-mm S
-                      flexural: prism and span where the export does not state them
-                      (default the C348 prism: 40 x 40 mm on a 120 mm span)
-  -h, --help          show this text
-
-exit status: 0 success, 1 bad input (message "file:line: what was expected"), 2 bad usage
 )";
+    }
+
+    int run() override {
+        if (!config_.empty()) c_.config = config_;
+        if (!format_.empty()) c_.format = format_;
+        for (const auto& v : columns_) c_.columns.push_back(role_value("--column", v));
+        for (const auto& v : units_) c_.units.push_back(role_value("--unit", v));
+        if (!test_.empty()) c_.test = test_;
+        for (std::size_t k = 0; k < dimension_options_.size(); ++k)
+            if (dimension_options_[k]->count()) c_.dimensions_mm[kDimensionOptions[k].option] = dimensions_[kDimensionOptions[k].option];
+        const app::Console& con = app::console();
+        // --json prints the results instead of writing them, unless --out asks for the files too.
+        const bool write = c_.write && (!con.json() || out_->count() > 0);
+        const LabStats lab = analyse(c_);
+        if (write) write_lab_outputs(c_.out, lab);
+        if (con.json()) app::Console::print_json(lab_stats_to_json(lab).dump(2));
+        else print_lab_report(con.text_stream(), lab, c_.per_cube || lab.source == "files");
+        if (write && !con.json()) con.text_stream() << "\nwrote " << (c_.out / "lab_results.json").string() << " and CSV tables\n";
+        if (write && after_outputs_) after_outputs_(c_.out, con.announce());
+        return common::exit_success;
+    }
+
+private:
+    AfterLabOutputs after_outputs_;
+    CommandLine c_;
+    CLI::Option* out_ = nullptr;
+    std::vector<std::string> columns_, units_;
+    std::string format_, test_;
+    std::map<std::string, double> dimensions_;
+    std::vector<CLI::Option*> dimension_options_;
+    fs::path config_;
+};
+
+}  // namespace
+
+std::unique_ptr<app::Command> make_lab_command(AfterLabOutputs after_outputs) {
+    return std::make_unique<LabCommand>(std::move(after_outputs));
 }
 
 int run_lab_command(const std::vector<std::string>& args, const AfterLabOutputs& after_outputs) {
-    for (const auto& a : args)
-        if (a == "-h" || a == "--help") {
-            std::cout << lab_command_usage();
-            return 0;
-        }
-    try {
-        const CommandLine c = parse(args);
-        const LabStats lab = analyse(c);
-        if (c.write) write_lab_outputs(c.out, lab);
-        if (c.json) std::cout << lab_stats_to_json(lab).dump(2) << "\n";
-        else print_lab_report(std::cout, lab, c.per_cube || lab.source == "files");
-        if (c.write && !c.json) std::cout << "\nwrote " << (c.out / "lab_results.json").string() << " and CSV tables\n";
-        if (c.write && after_outputs) after_outputs(c.out, c.json ? std::cerr : std::cout);
-        return 0;
-    } catch (const UsageError& e) {
-        std::cerr << "gradem lab: " << e.what() << "\n(see gradem lab --help)\n";
-        return 2;
-    } catch (const InputError& e) {
-        std::cerr << "gradem lab: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "gradem lab: error: " << e.what() << "\n";
-        return 1;
-    }
+    LabCommand command(after_outputs);
+    return app::run_command(app::command_info("lab"), command, args);
 }
 
 }  // namespace gradem::lab

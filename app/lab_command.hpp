@@ -4,9 +4,14 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
+
+namespace gradem::app {
+class Command;
+}  // namespace gradem::app
 
 namespace gradem::lab {
 
@@ -15,11 +20,11 @@ namespace gradem::lab {
 using AfterLabOutputs = std::function<void(const std::filesystem::path& out_dir, std::ostream& out)>;
 
 /// Runs `gradem lab` with `args` (what follows "lab" on the command line). Prints to stdout,
-/// errors to stderr as "gradem lab: file:line: what". Returns 0 on success, 1 on bad input,
-/// 2 on bad usage. Never throws.
+/// errors to stderr as "gradem lab: file:line: what". Returns the exit status of
+/// common/exit_status.hpp: 0 success, 1 bad input, 2 bad usage. Never throws.
 int run_lab_command(const std::vector<std::string>& args, const AfterLabOutputs& after_outputs = {});
 
-/// The usage text printed by --help.
-const char* lab_command_usage();
+/// The lab command for the command table (app/command_table.cpp).
+std::unique_ptr<app::Command> make_lab_command(AfterLabOutputs after_outputs);
 
 }  // namespace gradem::lab

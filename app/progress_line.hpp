@@ -1,6 +1,6 @@
 #pragma once
 // The progress line the long-running test commands (compress, tension) print on stderr while a
-// test runs: elapsed time, strain, stress, peak, breaks and an ETA.
+// test runs (nothing with --quiet): elapsed time, strain, stress, peak, breaks and an ETA.
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "app/console.hpp"
 #include "common/clock_text.hpp"
 #include "experiments/axial_loading.hpp"
 
@@ -24,7 +25,7 @@ class ProgressLine {
 
 public:
     ProgressLine(std::string label, double max_strain)
-        : label_(std::move(label)), max_strain_(max_strain), tty_(isatty(fileno(stderr)) != 0),
+        : label_(std::move(label)), max_strain_(max_strain), out_(console().notes()), tty_(isatty(fileno(out_)) != 0),
           start_(Clock::now()), last_(start_) {}
 
     void update(const exp::CurvePoint& p, double peak) {
@@ -37,7 +38,7 @@ public:
         const double rate = (p.platen_strain - first_->second) / seconds(first_->first, now);  // strain per wall second
         const double end = std::min(max_strain_, std::max(2.0 * peak_strain_, p.platen_strain));
         const double eta = rate > 0.0 ? (end - p.platen_strain) / rate : std::nan("");
-        std::fprintf(stderr, "%s%s: %s  strain %.5f  stress %.3f MPa  peak %.3f MPa  breaks %lld  ETA %s%s",
+        std::fprintf(out_, "%s%s: %s  strain %.5f  stress %.3f MPa  peak %.3f MPa  breaks %lld  ETA %s%s",
                      tty_ ? "\r" : "", label_.c_str(), common::clock_text(elapsed).c_str(), p.platen_strain,
                      p.stress * 1e-6, peak * 1e-6, static_cast<long long>(p.broken_tension + p.broken_shear),
                      common::clock_text(eta).c_str(), tty_ ? "   " : "\n");
@@ -45,7 +46,7 @@ public:
     }
 
     void finish() const {
-        if (tty_ && printed_) std::fprintf(stderr, "\n");
+        if (tty_ && printed_) std::fprintf(out_, "\n");
     }
 
     exp::ProgressCallback callback() {
@@ -59,6 +60,7 @@ private:
 
     std::string label_;
     double max_strain_;
+    std::FILE* out_;
     bool tty_;
     Clock::time_point start_, last_;
     std::optional<std::pair<Clock::time_point, double>> first_;  // first point: time, strain

@@ -1,9 +1,12 @@
 // `gradem report <lab|compress|calibrate|study> <folder>`: (re)makes report.html from the outputs of
 // that command in <folder> — e.g. after installing python3-matplotlib, without re-running a long
 // calibration. The commands themselves call the same writer when they finish.
-// Exit codes: 0 written, 2 bad usage or a missing/garbled output file, 5 the report could not be
-// made (python3 or matplotlib missing, or the generator failed).
+// Exit status: 0 written, 1 a missing folder or a missing/garbled output file, 2 bad usage, 3 the
+// report could not be made (python3 or matplotlib missing, or the generator failed).
+#include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -14,22 +17,46 @@
 
 namespace gradem::app {
 
-int run_report(const std::vector<std::string>& args) {
-    std::string kind_name, folder;
-    CLI::App app{"(Re)make report.html from the outputs of a command in a folder.", "gradem report"};
-    app.add_option("kind", kind_name, "lab, compress, calibrate or study")->required();
-    app.add_option("folder", folder, "the command's output folder")->required();
-    parse_command(app, args);
-    const auto kind = report::parse_report_kind(kind_name);
-    if (!kind) throw UsageError("report kind '" + kind_name + "': expected lab, compress, calibrate or study");
-    const report::HtmlReportOutcome o = report::write_html_report(*kind, folder);
-    if (o.written()) {
-        std::cout << "report: " << o.path.lexically_normal().string() << "\n";
-        return 0;
-    }
-    std::cerr << "gradem report: " << o.problem << "\n";
-    return o.status == report::ReportStatus::bad_input ? 2 : 5;
+namespace {
+
+std::string kind_list() {
+    std::string out;
+    for (const std::string& k : report::report_kind_names()) out += (out.empty() ? "" : "|") + k;
+    return out;
 }
+
+class ReportCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        std::string names;
+        for (const std::string& k : report::report_kind_names()) names += (names.empty() ? "" : ", ") + k;
+        app.add_option("kind", kind_, "which command made the folder: " + names)->required()->type_name(kind_list());
+        app.add_option("folder", folder_, "the command's output folder")->required()->type_name("folder");
+    }
+
+    int run() override {
+        const Console& con = console();
+        const auto kind = report::parse_report_kind(kind_);
+        if (!kind) throw UsageError("report kind '" + kind_ + "': expected one of " + kind_list());
+        inputs_checked();
+        const report::HtmlReportOutcome o = report::write_html_report(*kind, folder_);
+        if (o.written()) {
+            const std::string path = o.path.lexically_normal().string();
+            std::fprintf(con.text(), "report: %s\n", path.c_str());
+            if (con.json()) Console::print_json(nlohmann::ordered_json{{"report", path}}.dump(2));
+            return common::exit_success;
+        }
+        std::fprintf(stderr, "gradem report: %s\n", o.problem.c_str());
+        return o.status == report::ReportStatus::bad_input ? common::exit_bad_input : common::exit_run_failed;
+    }
+
+private:
+    std::string kind_, folder_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_report_command() { return std::make_unique<ReportCommand>(); }
 
 void write_lab_report(const std::filesystem::path& out_dir, std::ostream& announce) {
     report::write_html_report_or_warn(report::ReportKind::lab, out_dir, announce);

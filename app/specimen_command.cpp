@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -18,73 +20,97 @@
 namespace gradem::app {
 namespace {
 
-struct SpecimenOptions {
-    std::string config;
-    bool show = false;
+class SpecimenCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        app.add_option("config", config_, "cube config TOML (experiments/README.md lists its keys)")->required()->type_name("config.toml");
+        app.add_flag("--show", show_, "only load the cached packing (an error if there is none)");
+    }
+    int run() override;
+
+private:
+    std::string config_;
+    bool show_ = false;
 };
 
-SpecimenOptions parse_specimen(const std::vector<std::string>& args) {
-    SpecimenOptions o;
-    CLI::App app{"Generate (or load from the packing cache) the packing of a cube config and describe it.", "gradem specimen"};
-    app.add_option("config", o.config, "cube config TOML")->required();
-    app.add_flag("--show", o.show, "only load the cached packing (an error if there is none)");
-    parse_command(app, args);
-    return o;
-}
-
-void print_passing_table(const exp::GrainSample& g) {
-    std::printf("gradation (mass passing, renormalised to the kept size range):\n");
-    std::printf("  %10s  %10s  %10s  %9s\n", "sieve [mm]", "target %", "achieved %", "diff");
+void print_passing_table(std::FILE* out, const exp::GrainSample& g) {
+    std::fprintf(out, "gradation (mass passing, renormalised to the kept size range):\n");
+    std::fprintf(out, "  %10s  %10s  %10s  %9s\n", "sieve [mm]", "target %", "achieved %", "diff");
     for (std::size_t k = 0; k < g.sieve_sizes.size(); ++k) {
         const double target = k < g.target_passing.size() ? 100.0 * g.target_passing[k] : 0.0;
         const double achieved = k < g.achieved_passing.size() ? 100.0 * g.achieved_passing[k] : 0.0;
-        std::printf("  %10.3f  %10.2f  %10.2f  %+9.2f\n", g.sieve_sizes[k] * 1e3, target, achieved, achieved - target);
+        std::fprintf(out, "  %10.3f  %10.2f  %10.2f  %+9.2f\n", g.sieve_sizes[k] * 1e3, target, achieved, achieved - target);
     }
+}
+
+/// --json: what the text describes (the packing, its origin, the gradation achieved).
+std::string packing_json(const std::filesystem::path& path, bool cached, const exp::Packing& packing) {
+    nlohmann::ordered_json j = {{"packing", path.string()},
+                                {"cached", cached},
+                                {"particles", packing.radius.size()},
+                                {"edge_mm", packing.edge() * 1e3},
+                                {"porosity", packing.porosity},
+                                {"mean_coordination", packing.mean_coordination},
+                                {"converged", packing.converged}};
+    const exp::GrainSample& g = packing.grains;
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < g.sieve_sizes.size(); ++k)
+        rows.push_back({{"sieve_mm", g.sieve_sizes[k] * 1e3},
+                        {"target_percent", k < g.target_passing.size() ? 100.0 * g.target_passing[k] : 0.0},
+                        {"achieved_percent", k < g.achieved_passing.size() ? 100.0 * g.achieved_passing[k] : 0.0}});
+    j["gradation"] = rows;
+    return j.dump(2);
 }
 
 // Explicit paste: the sand packing and the paste fill (cached), then the fill's report.
 int run_paste_specimen(const exp::CubeConfig& config, const lab::GradationCurve& curve, const std::string& file,
                        bool show) {
+    const Console& con = console();
     const std::filesystem::path path = exp::paste_cache_path(curve, config.specimen, config.cache_dir);
     if (show && !std::filesystem::exists(path))
         throw lab::InputError(file, 0, "no cached paste specimen for this config (expected " + path.string() +
                                            "): run `gradem specimen " + file + "` first");
-    if (!std::filesystem::exists(path)) std::fprintf(stderr, "specimen: generating the paste specimen ...\n");
+    if (!std::filesystem::exists(path)) std::fprintf(con.notes(), "specimen: generating the paste specimen ...\n");
     bool cached = false;
     exp::PasteReport report;
     const exp::Packing packing = exp::load_or_generate_paste(curve, config.specimen, config.cache_dir, &cached, &report);
-    std::printf("paste specimen %s (%s): N = %zu\n", path.string().c_str(), cached ? "cached" : "generated now",
+    std::fprintf(con.text(), "paste specimen %s (%s): N = %zu\n", path.string().c_str(), cached ? "cached" : "generated now",
                 packing.position.size());
-    std::printf("%s\n", exp::describe(packing, config.specimen).c_str());
-    std::printf("%s\n", exp::describe(report).c_str());
-    return 0;
+    std::fprintf(con.text(), "%s\n", exp::describe(packing, config.specimen).c_str());
+    std::fprintf(con.text(), "%s\n", exp::describe(report).c_str());
+    if (con.json()) Console::print_json(packing_json(path, cached, packing));
+    return common::exit_success;
 }
 
 }  // namespace
 
-int run_specimen(const std::vector<std::string>& args) {
-    const SpecimenOptions o = parse_specimen(args);
-    const exp::CubeConfig config = exp::load_cube_config(o.config);
+int SpecimenCommand::run() {
+    const Console& con = console();
+    const exp::CubeConfig config = exp::load_cube_config(config_);
     const lab::GradationCurve curve = exp::load_gradation(config);
-    if (config.specimen.paste) return run_paste_specimen(config, curve, o.config, o.show);  // explicit paste
+    inputs_checked();
+    if (config.specimen.paste) return run_paste_specimen(config, curve, config_, show_);  // explicit paste
     const std::uint64_t key = exp::packing_key(curve, config.specimen);
     const std::filesystem::path path = exp::packing_cache_path(config.cache_dir, key);
     exp::Packing packing;
     bool cached = false;
-    if (o.show) {
+    if (show_) {
         if (!std::filesystem::exists(path))
-            throw common::InputError(o.config, 0, "no cached packing for this config (expected " + path.string() +
-                                                   "): run `gradem specimen " + o.config + "` first");
+            throw common::InputError(config_, 0, "no cached packing for this config (expected " + path.string() +
+                                                   "): run `gradem specimen " + config_ + "` first");
         packing = exp::load_packing(path, key);
         cached = true;
     } else {
-        if (!std::filesystem::exists(path)) std::fprintf(stderr, "specimen: generating the packing (genesis) ...\n");
+        if (!std::filesystem::exists(path)) std::fprintf(con.notes(), "specimen: generating the packing (genesis) ...\n");
         packing = exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
     }
-    std::printf("packing %s (%s)\n", path.string().c_str(), cached ? "cached" : "generated now");
-    std::printf("%s\n", exp::describe(packing, config.specimen).c_str());
-    print_passing_table(packing.grains);
-    return 0;
+    std::fprintf(con.text(), "packing %s (%s)\n", path.string().c_str(), cached ? "cached" : "generated now");
+    std::fprintf(con.text(), "%s\n", exp::describe(packing, config.specimen).c_str());
+    print_passing_table(con.text(), packing.grains);
+    if (con.json()) Console::print_json(packing_json(path, cached, packing));
+    return common::exit_success;
 }
+
+std::unique_ptr<Command> make_specimen_command() { return std::make_unique<SpecimenCommand>(); }
 
 }  // namespace gradem::app

@@ -5,7 +5,7 @@
 // Under an MPI launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) rank 0 runs the
 // study and ranks 1..N-1 run its cube tests, as for gradem calibrate
 // (calibrate/study_models.hpp); the answer is the same as with threads.
-// Exit codes: 0 done, 2 bad usage, input, ledger or MPI setup, 4 every run failed.
+// Exit status: 0 done, 1 bad input (study, ledger or MPI setup), 2 bad usage, 3 every run failed.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -20,6 +20,7 @@
 #ifdef GRADEM_HAVE_MPI
 #include "calibrate/mpi_executor.hpp"
 #endif
+#include "common/text_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/study_report.hpp"
 
@@ -31,16 +32,6 @@ struct StudyOptions {
     int workers = 0;
 };
 
-StudyOptions parse_study(const std::vector<std::string>& args) {
-    StudyOptions o;
-    CLI::App app{"Run a parameter study (experiments/studies/*.toml; kinds in experiments/README.md).", "gradem study"};
-    app.add_option("study", o.file, "study TOML")->required();
-    app.add_option("--out", o.out, "result folder (default: the study's output.dir)");
-    app.add_option("--workers", o.workers, "concurrent cube tests, one thread each")->check(CLI::Range(1, 64));
-    parse_command(app, args);
-    return o;
-}
-
 cal::StudyConfig load_config(const StudyOptions& o) {
     cal::StudyConfig config = cal::load_study_config(o.file);
     apply_out_option(o.out, config.out_dir, config.ledger);
@@ -48,25 +39,45 @@ cal::StudyConfig load_config(const StudyOptions& o) {
     return config;
 }
 
-void say(const std::string& line) { std::fprintf(stderr, "study: %s\n", line.c_str()); }
+void say(const std::string& line) { std::fprintf(console().notes(), "study: %s\n", line.c_str()); }
 
 /// Runs the study (on `execution`'s executor if given), writes its outputs and the answer.
 int study_and_report(const cal::StudyConfig& config, const cal::StudyExecution* execution) {
+    const Console& con = console();
     const cal::StudyResult result = cal::run_study(config, say, execution);
     cal::write_study_outputs(result);
-    if (result.representative) std::printf("(the lab data are REPRESENTATIVE, not measurements)\n");
-    for (const std::string& v : result.verdict) std::printf("%s\n", v.c_str());
-    std::printf("results in %s\n", config.out_dir.c_str());
+    if (result.representative) std::fprintf(con.text(), "(the lab data are REPRESENTATIVE, not measurements)\n");
+    for (const std::string& v : result.verdict) std::fprintf(con.text(), "%s\n", v.c_str());
+    std::fprintf(con.text(), "results in %s\n", config.out_dir.c_str());
     std::fflush(stdout);
-    report::write_html_report_or_warn(report::ReportKind::study, config.out_dir, std::cout);
+    report::write_html_report_or_warn(report::ReportKind::study, config.out_dir, con.announce(), con.notes_stream());
+    if (con.json()) Console::print_json(common::read_file_bytes(config.out_dir / "study.json"));
     const bool ran = result.runs_executed + result.runs_from_ledger > 0;
-    return ran && result.runs_failed == result.runs_executed + result.runs_from_ledger ? 4 : 0;
+    if (ran && result.runs_failed == result.runs_executed + result.runs_from_ledger) {
+        std::fprintf(stderr, "gradem study: every run failed (results in %s)\n", config.out_dir.c_str());
+        return common::exit_run_failed;
+    }
+    return common::exit_success;
 }
 
-}  // namespace
+class StudyCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        app.add_option("study", o_.file, "study TOML (experiments/studies/*.toml; kinds in experiments/README.md)")
+            ->required()
+            ->type_name("study.toml");
+        app.add_option("--out", o_.out, "result folder (default: the study's output.dir)")->type_name("DIR");
+        app.add_option("--workers", o_.workers, "concurrent cube tests, one thread each, 1 to 64 (overrides run.workers)")->check(CLI::Range(1, 64))->type_name("N");
+    }
+    int run() override;
 
-int run_study(const std::vector<std::string>& args) {
-    const StudyOptions o = parse_study(args);
+private:
+    StudyOptions o_;
+};
+
+int StudyCommand::run() {
+    const StudyOptions& o = o_;
+
 #ifdef GRADEM_HAVE_MPI
     if (cal::mpi::launched()) {
         // Every rank reads the study and makes the models of all its cases; the workers serve
@@ -78,6 +89,7 @@ int run_study(const std::vector<std::string>& args) {
                 config = load_config(o);
                 auto all = std::make_unique<cal::StudyModels>(cal::study_problems(config));
                 models = all.get();
+                inputs_checked();
                 return cal::mpi::JobModel{std::move(all), config.workers};
             },
             [&](cal::CubeModel&, cal::mpi::MpiExecutor& executor) {
@@ -90,7 +102,13 @@ int run_study(const std::vector<std::string>& args) {
 #else
     refuse_mpi_launch_without_mpi();
 #endif
-    return study_and_report(load_config(o), nullptr);
+    const cal::StudyConfig config = load_config(o);
+    inputs_checked();
+    return study_and_report(config, nullptr);
 }
+
+}  // namespace
+
+std::unique_ptr<Command> make_study_command() { return std::make_unique<StudyCommand>(); }
 
 }  // namespace gradem::app

@@ -4,14 +4,16 @@
 // packing, runs run_tension_test with a progress line on stderr, writes load_curve.csv,
 // cracks.csv and macro.json (tension positive) into <output dir>/tension and prints a summary.
 // σc/σt is reported when a compression macro.json of the same config is given with
-// --compression (checked before the run: an unusable file is an error), or found as
+// --compression (read and checked before genesis, matched to the packing before the run: an
+// unusable file is an error, exit 1), or found as
 // <output dir>/macro.json (where `gradem compress` writes it; skipped with a note if it does
 // not match).
 // --check-rate runs the test again at half the strain rate.
-// Exit codes: 0 ok, 2 bad usage or input, 3 a diverged simulation (outputs still written).
+// Exit status: 0 ok, 1 bad input, 2 bad usage, 3 a diverged simulation (outputs still written).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +22,7 @@
 #include "app/commands.hpp"
 #include "app/progress_line.hpp"
 #include "common/input_error.hpp"
+#include "common/text_file.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/packing_cache.hpp"
 #include "experiments/tension_config.hpp"
@@ -33,26 +36,29 @@ namespace {
 namespace fs = std::filesystem;
 
 
-struct TensionOptions {
-    std::string config, out, compression;
-    bool check_rate = false, vtk = false;
-};
+class TensionCommand final : public Command {
+public:
+    void declare(CLI::App& app) override {
+        app.add_option("config", config_, "cube config TOML (an optional [tension] table; experiments/README.md)")
+            ->required()
+            ->type_name("config.toml");
+        app.add_option("--out", out_, "result folder (default: the config's output.dir); files go to DIR/tension")->type_name("DIR");
+        app.add_option("--compression", compression_,
+                       "macro.json of the compression test of the same config, for sigma_c/sigma_t (checked before the run)")
+            ->type_name("MACRO_JSON");
+        app.add_flag("--check-rate", check_rate_, "run again at half the strain rate and report the change");
+        app.add_flag("--vtk", vtk_, "write ParaView files as well");
+    }
+    int run() override;
 
-TensionOptions parse_tension(const std::vector<std::string>& args) {
-    TensionOptions o;
-    CLI::App app{"The virtual direct-tension test of a cube config: sigma_t and sigma_c/sigma_t (into DIR/tension).", "gradem tension"};
-    app.add_option("config", o.config, "cube config TOML (an optional [tension] table; experiments/README.md)")->required();
-    app.add_option("--out", o.out, "result folder (default: the config's output.dir); files go to DIR/tension");
-    app.add_option("--compression", o.compression, "macro.json of the compression test of the same config, for sigma_c/sigma_t");
-    app.add_flag("--check-rate", o.check_rate, "run again at half the strain rate and report the change");
-    app.add_flag("--vtk", o.vtk, "write ParaView files as well");
-    parse_command(app, args);
-    return o;
-}
+private:
+    std::string config_, out_, compression_;
+    bool check_rate_ = false, vtk_ = false;
+};
 
 exp::TensionTestResult run_with_progress(const exp::Packing& packing, const exp::CubeConfig& c,
                                          const exp::TensionTestSpec& spec, const std::string& label) {
-    std::fprintf(stderr, "%s: strain rate %.4g 1/s, bonding and settling ...\n", label.c_str(),
+    std::fprintf(console().notes(), "%s: strain rate %.4g 1/s, bonding and settling ...\n", label.c_str(),
                  spec.test.loading.strain_rate);
     ProgressLine line(label, spec.test.loading.max_strain);
     exp::TensionTestResult r = exp::run_tension_test(packing, c.material, spec, line.callback());
@@ -67,65 +73,68 @@ std::optional<exp::CompressionReference> compression_beside(const exp::CubeConfi
     try {
         return exp::read_compression_reference(beside, c, packing);
     } catch (const common::InputError& e) {
-        std::fprintf(stderr, "tension: no σc/σt: %s\n", e.what());
+        std::fprintf(console().notes(), "tension: no σc/σt: %s\n", e.what());
         return std::nullopt;
     }
 }
 
 void print_summary(const exp::TensionTestResult& t, const std::optional<exp::RateCheck>& check,
                    const std::optional<exp::CompressionReference>& compression, const std::string& out) {
+    std::FILE* text = console().text();
     const exp::CubeTestResult& r = t.cube;
     std::int64_t tension = 0, shear = 0;
     for (const BreakEvent& e : r.cracks) ++(e.mode == BondState::broken_shear ? shear : tension);
     const lab::CurveReduction& m = r.macro;
-    std::printf("direct tension test (%zu particles, %zu bonds, grips of %zu + %zu grains):\n", r.particles, r.bonds,
+    std::fprintf(text, "direct tension test (%zu particles, %zu bonds, grips of %zu + %zu grains):\n", r.particles, r.bonds,
                 t.grip_grains_bottom, t.grip_grains_top);
-    std::printf("  tensile strength     %9.3f MPa\n", m.peak_stress_pa * 1e-6);
-    std::printf("  strain at peak       %9.6f gauge, %.6f grips\n", m.strain_at_peak, r.strain_at_peak_platen);
-    std::printf("  tensile modulus      %9.3f GPa (chord from %.0f µε to 40 %% of the peak)%s\n", m.chord_modulus_pa * 1e-9,
+    std::fprintf(text, "  tensile strength     %9.3f MPa\n", m.peak_stress_pa * 1e-6);
+    std::fprintf(text, "  strain at peak       %9.6f gauge, %.6f grips\n", m.strain_at_peak, r.strain_at_peak_platen);
+    std::fprintf(text, "  tensile modulus      %9.3f GPa (chord from %.0f µε to 40 %% of the peak)%s\n", m.chord_modulus_pa * 1e-9,
                 t.chord_lower_strain * 1e6, m.status == lab::ReductionStatus::ok ? "" : ("  (" + m.message + ")").c_str());
     if (compression)
-        std::printf("  σc / σt              %9.2f  (σc %.3f MPa from %s)\n", compression->peak_stress / m.peak_stress_pa,
+        std::fprintf(text, "  σc / σt              %9.2f  (σc %.3f MPa from %s)\n", compression->peak_stress / m.peak_stress_pa,
                     compression->peak_stress * 1e-6, compression->file.string().c_str());
-    std::printf("  broken bonds         %lld tension, %lld shear (of %zu)\n", static_cast<long long>(tension),
+    std::fprintf(text, "  broken bonds         %lld tension, %lld shear (of %zu)\n", static_cast<long long>(tension),
                 static_cast<long long>(shear), r.bonds);
-    std::printf("  stop                 %s after %lld steps, wall time %.1f s\n", r.test.stop_reason.c_str(),
+    std::fprintf(text, "  stop                 %s after %lld steps, wall time %.1f s\n", r.test.stop_reason.c_str(),
                 static_cast<long long>(r.test.steps), r.test.wall_seconds);
     if (check)
-        std::printf("  rate check (half rate %.4g 1/s): peak %+.2f %%, modulus %+.2f %%%s\n", check->half_rate,
+        std::fprintf(text, "  rate check (half rate %.4g 1/s): peak %+.2f %%, modulus %+.2f %%%s\n", check->half_rate,
                     100.0 * check->peak_change, 100.0 * check->modulus_change,
                     check->diverged_half ? " (half-rate run diverged)" : "");
-    for (const std::string& w : r.warnings) std::printf("  warning: %s\n", w.c_str());
-    std::printf("  results in           %s\n", out.c_str());
+    for (const std::string& w : r.warnings) std::fprintf(text, "  warning: %s\n", w.c_str());
+    std::fprintf(text, "  results in           %s\n", out.c_str());
 }
 
 }  // namespace
 
-int run_tension(const std::vector<std::string>& args) {
-    const TensionOptions o = parse_tension(args);
-    exp::CubeConfig config = exp::load_cube_config(o.config);
-    if (!o.out.empty()) config.out_dir = o.out;
-    if (o.vtk) config.vtk = true;
+int TensionCommand::run() {
+    const Console& con = console();
+    exp::CubeConfig config = exp::load_cube_config(config_);
+    if (!out_.empty()) config.out_dir = out_;
+    if (vtk_) config.vtk = true;
     const exp::TensionConfig tension = exp::load_tension_config(config);
     exp::TensionTestSpec spec = tension.spec;
     const fs::path out_dir = config.out_dir / "tension";
 
     const lab::GradationCurve curve = exp::load_gradation(config);
+    if (!compression_.empty()) exp::check_compression_file(compression_);  // before genesis; matched to it below
+    inputs_checked();
     bool cached = false;
     if (!fs::exists(exp::packing_cache_path(config.cache_dir, exp::packing_key(curve, config.specimen))))
-        std::fprintf(stderr, "tension: generating the packing (genesis) ...\n");
+        std::fprintf(con.notes(), "tension: generating the packing (genesis) ...\n");
     const exp::Packing packing = exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
-    std::fprintf(stderr, "tension: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
+    std::fprintf(con.notes(), "tension: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
 
-    std::optional<exp::CompressionReference> compression;  // --compression: checked before the long run
-    if (!o.compression.empty()) compression = exp::read_compression_reference(o.compression, config, packing);
+    std::optional<exp::CompressionReference> compression;  // --compression: matched to the packing before the long run
+    if (!compression_.empty()) compression = exp::read_compression_reference(compression_, config, packing);
     spec.test.loading.strain_rate = exp::tension_strain_rate(config, tension, packing);
     if (config.vtk) spec.test.snapshot = exp::vtk_snapshots(out_dir / "vtk", config.vtk_every);
     const exp::TensionTestResult result = run_with_progress(packing, config, spec, "tension");
 
     std::optional<exp::RateCheck> check;
     bool half_diverged = false;
-    if (o.check_rate) {
+    if (check_rate_) {
         exp::TensionTestSpec half = spec;
         half.test.loading.strain_rate = 0.5 * spec.test.loading.strain_rate;
         half.test.snapshot = {};
@@ -136,12 +145,15 @@ int run_tension(const std::vector<std::string>& args) {
     if (!compression) compression = compression_beside(config, packing);
     exp::write_tension_outputs(out_dir, result, config, spec, packing, spec.test.loading.strain_rate, check, compression);
     print_summary(result, check, compression, out_dir.string());
+    if (con.json()) Console::print_json(common::read_file_bytes(out_dir / "macro.json"));
     if (result.diverged() || half_diverged) {
-        std::fprintf(stderr, "gradem: the simulation diverged: %s\n",
+        std::fprintf(stderr, "gradem tension: the simulation diverged: %s\n",
                      (result.diverged() ? result.cube.test.stop_reason : check->stop_reason_half).c_str());
-        return 3;
+        return common::exit_run_failed;
     }
-    return 0;
+    return common::exit_success;
 }
+
+std::unique_ptr<Command> make_tension_command() { return std::make_unique<TensionCommand>(); }
 
 }  // namespace gradem::app

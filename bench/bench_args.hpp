@@ -1,14 +1,25 @@
 #pragma once
-// The command-line reading the bench programs share (gradem-bench, gradem-model-sweep): walk
-// argv option by option, take an option's value from the next argument, and read comma lists
-// of numbers, each failure an std::invalid_argument naming the option and the text.
+// The command-line reading the bench programs share (gradem-bench, gradem-model-sweep,
+// gradem-mpi-bench): walk argv option by option, take an option's value from the next argument,
+// and read comma lists of numbers, each failure a UsageError naming the option and the text;
+// run_main() gives every program the exit status of gradem (common/exit_status.hpp).
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "common/exit_status.hpp"
+#include "common/input_error.hpp"
+
 namespace gradem::bench {
+
+/// Bad usage: an unknown option, a missing or bad value (exit status 2).
+struct UsageError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
 
 /// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
 inline std::vector<std::string> split_list(const std::string& text, char separator = ',') {
@@ -23,7 +34,7 @@ inline std::vector<std::string> split_list(const std::string& text, char separat
 inline double parse_number(const std::string& text, const std::string& what) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0') throw std::invalid_argument(what + ": '" + text + "' is not a number");
+    if (text.empty() || *end != '\0') throw UsageError(what + ": '" + text + "' is not a number");
     return v;
 }
 
@@ -32,7 +43,7 @@ template <class T>
 std::vector<T> parse_number_list(const std::string& text, const std::string& what) {
     std::vector<T> out;
     for (const std::string& item : split_list(text)) out.push_back(static_cast<T>(parse_number(item, what)));
-    if (out.empty()) throw std::invalid_argument(what + ": expected a comma-separated list of numbers, got '" + text + "'");
+    if (out.empty()) throw UsageError(what + ": expected a comma-separated list of numbers, got '" + text + "'");
     return out;
 }
 
@@ -44,7 +55,7 @@ public:
     bool next() { return ++k_ < argc_ && (current_ = argv_[k_], true); }
     [[nodiscard]] const std::string& arg() const { return current_; }
     std::string value() {
-        if (k_ + 1 >= argc_) throw std::invalid_argument(current_ + " needs a value");
+        if (k_ + 1 >= argc_) throw UsageError(current_ + " needs a value");
         return argv_[++k_];
     }
 
@@ -54,5 +65,28 @@ private:
     int k_ = 0;
     std::string current_;
 };
+
+/// A program's main: returns what `body` returns; an error is "<program>: what" on stderr and
+/// exit status 2 (UsageError, with a pointer to --help), 1 (common::InputError: a config or
+/// file; std::invalid_argument: a value the work cannot start from) or 3 (any other: the run
+/// failed).
+template <class Body>
+int run_main(const char* program, Body&& body) {
+    try {
+        return body();
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "%s: %s (see %s --help)\n", program, e.what(), program);
+        return common::exit_bad_usage;
+    } catch (const common::InputError& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return common::exit_bad_input;
+    } catch (const std::invalid_argument& e) {  // a value the work cannot start from
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return common::exit_bad_input;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: the run failed: %s\n", program, e.what());
+        return common::exit_run_failed;
+    }
+}
 
 }  // namespace gradem::bench

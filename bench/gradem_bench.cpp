@@ -51,9 +51,41 @@ struct Options {
     bench::FullCubeOptions cube;        ///< --full-cube settings
 };
 
+constexpr const char* kHelp =
+    "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] [--repeat R] [--json]\n"
+    "                    [--models parallel_bond,soft_bond,flat_joint]\n"
+    "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
+    "       gradem-bench --genesis N1,N2,... [--json]\n"
+    "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
+    "                    [--transits X] [--time-step S] [--json]\n"
+    "\n"
+    "Throughput of the DEM core on a bonded packing between closing platens (bench/README.md); not a test.\n"
+    "\n"
+    "options:\n"
+    "  --sizes N1,N2,...     packing sizes (default 20000,200000)\n"
+    "  --steps S             timed steps per run (default 1000; --full-cube: 100)\n"
+    "  --threads 1,2         OpenMP thread counts (--full-cube: the last one)\n"
+    "  --repeat R            runs per row, the median is printed (default 3)\n"
+    "  --models M1,M2        bond laws, one row set each (default parallel_bond)\n"
+    "  --neighbors N         neighbour-search rows at size ratios 1, 10, 50 instead\n"
+    "  --genesis N1,N2,...   genesis rows instead\n"
+    "  --full-cube           the full-size cube's N, memory, seconds per 1000 steps and whole-test estimate\n"
+    "  --min-diameter-mm D   --full-cube: lower cut of the gradation (default 0.149)\n"
+    "  --timed N             --full-cube: spheres of the timed packing (default 200000, at least 1000)\n"
+    "  --transits X          --full-cube: wave transits to the stop of a test (default 160)\n"
+    "  --time-step S         --full-cube: time step of the real specimen [s] (default: the timed one's)\n"
+    "  --json                one JSON object per row instead of the table\n"
+    "  -h, --help            show this text\n"
+    "\n";
+
 template <class T>
-std::vector<T> parse_list(const std::string& s) {
-    return bench::parse_number_list<T>(s, "list");
+std::vector<T> parse_list(const std::string& s, const std::string& option) {
+    return bench::parse_number_list<T>(s, option);
+}
+
+template <class T>
+T parse_one(const std::string& s, const std::string& option) {
+    return static_cast<T>(bench::parse_number(s, option));
 }
 
 Options parse(int argc, char** argv) {
@@ -61,38 +93,35 @@ Options parse(int argc, char** argv) {
     for (bench::ArgReader args(argc, argv); args.next();) {
         const std::string a = args.arg();
         auto value = [&] { return args.value(); };
-        if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value());
-        else if (a == "--threads") o.threads = parse_list<int>(value());
-        else if (a == "--steps") o.steps = std::stoll(value()), o.steps_given = true;
+        if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value(), a);
+        else if (a == "--threads") o.threads = parse_list<int>(value(), a);
+        else if (a == "--steps") o.steps = parse_one<std::int64_t>(value(), a), o.steps_given = true;
         else if (a == "--full-cube") o.full_cube = true;
-        else if (a == "--transits") o.cube.transits_to_stop = std::stod(value());
-        else if (a == "--timed") o.cube.timed = std::stoll(value());
-        else if (a == "--time-step") o.cube.time_step = std::stod(value());
-        else if (a == "--min-diameter-mm") o.cube.min_diameter = 1e-3 * std::stod(value());
-        else if (a == "--repeat") o.repeat = std::stoi(value());
+        else if (a == "--transits") o.cube.transits_to_stop = parse_one<double>(value(), a);
+        else if (a == "--timed") o.cube.timed = parse_one<std::int64_t>(value(), a);
+        else if (a == "--time-step") o.cube.time_step = parse_one<double>(value(), a);
+        else if (a == "--min-diameter-mm") o.cube.min_diameter = 1e-3 * parse_one<double>(value(), a);
+        else if (a == "--repeat") o.repeat = parse_one<int>(value(), a);
         else if (a == "--json") o.json = true;
-        else if (a == "--neighbors") o.neighbors = std::stoll(value());
-        else if (a == "--genesis") o.genesis = parse_list<std::int64_t>(value());
+        else if (a == "--neighbors") o.neighbors = parse_one<std::int64_t>(value(), a);
+        else if (a == "--genesis") o.genesis = parse_list<std::int64_t>(value(), a);
         else if (a == "--models") {
             o.models.clear();
             for (const std::string& name : bench::split_list(value())) {
                 const auto m = parse_bond_model(name);
-                if (!m) throw std::invalid_argument("--models: unknown bond model '" + name + "'");
+                if (!m) throw bench::UsageError("--models: unknown bond model '" + name + "'");
                 o.models.push_back(*m);
             }
         }
         else if (a == "--help" || a == "-h") {
-            std::cout << "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] "
-                         "[--repeat R] [--json] [--models parallel_bond,soft_bond,flat_joint]\n"
-                         "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
-                         "       gradem-bench --genesis N1,N2,... [--json]\n"
-                         "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
-                         "                    [--transits X] [--time-step S] [--json]\n";
-            std::exit(0);
-        } else throw std::invalid_argument("unknown option '" + a + "' (see --help)");
+            std::cout << kHelp << common::exit_status_text("the benchmark run failed");
+            std::exit(common::exit_success);
+        } else throw bench::UsageError("unknown option '" + a + "'");
     }
     if (o.steps < 1 || o.repeat < 1 || o.sizes.empty() || o.threads.empty())
-        throw std::invalid_argument("--steps, --repeat, --sizes and --threads must be positive");
+        throw bench::UsageError("--steps, --repeat, --sizes and --threads must be positive");
+    if (!(o.cube.min_diameter > 0.0) || o.cube.timed < 1000 || !(o.cube.transits_to_stop > 0.0) || !(o.cube.time_step >= 0.0))
+        throw bench::UsageError("--min-diameter-mm and --transits must be > 0, --time-step >= 0, --timed >= 1000");
     return o;
 }
 
@@ -225,15 +254,13 @@ TimedRun time_bonded_run(const exp::QuickPacking& packing, int threads, std::int
 
 int main(int argc, char** argv) {
     use_sleeping_openmp_threads(argv);
-    try {
+    return bench::run_main("gradem-bench", [&] {
         const Options o = parse(argc, argv);
         if (o.full_cube) {
             bench::FullCubeOptions c = o.cube;
             c.threads = o.threads.back();
             if (o.steps_given) c.steps = o.steps;
             c.json = o.json;
-            if (!(c.min_diameter > 0.0) || c.timed < 1000 || !(c.transits_to_stop > 0.0) || !(c.time_step >= 0.0))
-                throw std::invalid_argument("--min-diameter-mm and --transits must be > 0, --time-step >= 0, --timed >= 1000");
             bench::run_full_cube_bench(c);
             return 0;
         }
@@ -269,9 +296,6 @@ int main(int argc, char** argv) {
                 }
             }
         }
-    } catch (const std::exception& e) {
-        std::cerr << "gradem-bench: " << e.what() << "\n";
-        return 2;
-    }
-    return 0;
+        return 0;
+    });
 }

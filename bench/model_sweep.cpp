@@ -51,12 +51,16 @@ struct Options {
     bool tension = false;
 };
 
+constexpr const char* kUsage =
+    "usage: gradem-model-sweep <config.toml> [--model M] [--set key=value]... [--sweep key=v1,v2,...]...\n"
+    "                          [--sands a,b] [--seeds 1,2] [--tension]\n";
+
 using bench::parse_number;
 using bench::split_list;
 
 const exp::MaterialParameter& row(const std::string& key) {
     const exp::MaterialParameter* p = exp::find_material_parameter(key);
-    if (!p) throw std::invalid_argument("unknown material key '" + key + "' (see experiments/material_table.cpp)");
+    if (!p) throw bench::UsageError("unknown material key '" + key + "' (see experiments/material_table.cpp)");
     return *p;
 }
 
@@ -65,16 +69,27 @@ Options parse(int argc, char** argv) {
     for (bench::ArgReader args(argc, argv); args.next();) {
         const std::string a = args.arg();
         if (a == "--help" || a == "-h") {
-            std::printf("usage: gradem-model-sweep <cube config.toml> [--model M] [--set key=value]... "
-                        "[--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension]\n"
-                        "  keys: the [material] keys of experiments/README.md; one JSON row per test on stdout\n");
-            std::exit(0);
+            std::printf("%s\n"
+                        "The shape index D = E eps_peak / sigma_peak of the cube test against a bond model's shape parameters:\n"
+                        "one JSON row per cube test on stdout (calibrate/README.md \"Shape index D per model\").\n\n"
+                        "arguments:\n"
+                        "  <config.toml>         cube config TOML; its packing cache is used (generated if missing)\n"
+                        "options:\n"
+                        "  --model M             bond model of the base material (default: the config's)\n"
+                        "  --set key=value       a [material] key of the base (experiments/README.md), repeatable\n"
+                        "  --sweep key=v1,v2,... vary one key alone around the base, repeatable\n"
+                        "  --sands a,b           sands of the config's dataset (default: the config's sand)\n"
+                        "  --seeds 1,2           packing seeds (default 1)\n"
+                        "  --tension             also run the direct-tension test of each point\n"
+                        "  -h, --help            show this text\n\n%s",
+                        kUsage, common::exit_status_text("a cube test run failed").c_str());
+            std::exit(common::exit_success);
         }
         if (a == "--model") o.model = args.value();
         else if (a == "--set" || a == "--sweep") {
             const std::string v = args.value();
             const auto eq = v.find('=');
-            if (eq == std::string::npos) throw std::invalid_argument(a + " " + v + ": expected key=value");
+            if (eq == std::string::npos) throw bench::UsageError(a + " " + v + ": expected key=value");
             const std::string key = v.substr(0, eq);
             (void)row(key);
             if (a == "--set") o.sets.emplace_back(key, parse_number(v.substr(eq + 1), a + " " + key));
@@ -87,18 +102,16 @@ Options parse(int argc, char** argv) {
         else if (a == "--seeds") o.seeds = bench::parse_number_list<std::uint64_t>(args.value(), a);
         else if (a == "--tension") o.tension = true;
         else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
-        else throw std::invalid_argument("unknown argument '" + a + "'");
+        else throw bench::UsageError("unknown argument '" + a + "'");
     }
-    if (o.config.empty())
-        throw std::invalid_argument("usage: gradem-model-sweep <cube config.toml> [--model M] [--set key=value]... "
-                                    "[--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension]");
+    if (o.config.empty()) throw bench::UsageError(std::string("no cube config given: ") + kUsage);
     return o;
 }
 
 void apply(exp::MaterialParams& m, const std::string& key, double value) {
     const exp::MaterialParameter& p = row(key);
     if (!p.applies_to(m.bond.model))
-        throw std::invalid_argument("material key '" + key + "' belongs to " + exp::model_names(p.models));
+        throw bench::UsageError("material key '" + key + "' belongs to " + exp::model_names(p.models));
     if (p.integer) p.set_int(m, static_cast<std::int64_t>(value));
     else exp::apply_calibration_value(p, m, value);
 }
@@ -125,7 +138,7 @@ std::string tension_fields(const exp::CubeConfig& c, const exp::Packing& packing
 
 void run_point(const exp::CubeConfig& base, const exp::MaterialParams& material, const std::string& param,
                double value, const Options& o) {
-    if (auto why = material.invalid_reason()) throw std::invalid_argument(param + " = " + std::to_string(value) + ": " + *why);
+    if (auto why = material.invalid_reason()) throw bench::UsageError(param + " = " + std::to_string(value) + ": " + *why);
     for (const std::string& sand : o.sands) {
         exp::CubeConfig c = base;
         c.sand = sand;
@@ -162,14 +175,14 @@ void run_point(const exp::CubeConfig& base, const exp::MaterialParams& material,
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return bench::run_main("gradem-model-sweep", [&] {
         Options o = parse(argc, argv);
         const exp::CubeConfig base = exp::load_cube_config(o.config);
         if (o.sands.empty()) o.sands = {base.sand};
         exp::MaterialParams material = base.material;
         if (!o.model.empty()) {
             const auto m = parse_bond_model(o.model);
-            if (!m) throw std::invalid_argument("--model " + o.model + ": unknown (known: " + exp::bond_model_names() + ")");
+            if (!m) throw bench::UsageError("--model " + o.model + ": unknown (known: " + exp::bond_model_names() + ")");
             material.bond.model = *m;
         }
         for (const auto& [key, v] : o.sets) apply(material, key, v);
@@ -181,8 +194,5 @@ int main(int argc, char** argv) {
                 run_point(base, m, s.key, v, o);
             }
         return 0;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "gradem-model-sweep: %s\n", e.what());
-        return 2;
-    }
+    });
 }

@@ -13,6 +13,7 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/mpi_executor.hpp"
 #include "calibrate/run_message.hpp"
+#include "common/exit_status.hpp"
 #include "common/hash.hpp"
 
 using namespace gradem;
@@ -45,19 +46,30 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 int main(int argc, char** argv) {
     int runs = 2000, points = 200;
-    const char* usage = "usage: mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P]\n";
+    const std::string usage = "usage: mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P]\n";
     for (int k = 1; k < argc; k += 2) {
         const std::string o = argv[k];
         if (o == "--help" || o == "-h") {
-            std::printf("%s", usage);
-            return 0;
+            std::printf("%s\nThe MPI executor's cost per run: lone round trips and full batches over every worker rank.\n\n"
+                        "options:\n"
+                        "  --runs R              runs of the full batch (default 2000)\n"
+                        "  --curve-points P      points of each result's curve (default 200)\n"
+                        "  -h, --help            show this text\n\n%s",
+                        usage.c_str(), common::exit_status_text("the benchmark run failed").c_str());
+            return common::exit_success;
         }
         if (k + 1 >= argc || (o != "--runs" && o != "--curve-points")) {
-            std::fprintf(stderr, "gradem-mpi-bench: unknown or incomplete option '%s'\n%s", o.c_str(), usage);
-            return 2;
+            std::fprintf(stderr, "gradem-mpi-bench: unknown or incomplete option '%s' (see gradem-mpi-bench --help)\n%s",
+                         o.c_str(), usage.c_str());
+            return common::exit_bad_usage;
         }
-        if (o == "--runs") runs = std::atoi(argv[k + 1]);
-        else points = std::atoi(argv[k + 1]);
+        const long v = std::strtol(argv[k + 1], nullptr, 10);
+        if (v < 1 || std::to_string(v) != argv[k + 1]) {
+            std::fprintf(stderr, "gradem-mpi-bench: %s: '%s' is not a positive integer (see gradem-mpi-bench --help)\n",
+                         o.c_str(), argv[k + 1]);
+            return common::exit_bad_usage;
+        }
+        (o == "--runs" ? runs : points) = static_cast<int>(v);
     }
     try {
         return cal::mpi::run_job(
@@ -87,7 +99,7 @@ int main(int argc, char** argv) {
                 return 0;
             });
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "gradem-mpi-bench: %s\n", e.what());
-        return 2;
+        std::fprintf(stderr, "gradem-mpi-bench: the run failed: %s\n", e.what());
+        return common::exit_run_failed;
     }
 }

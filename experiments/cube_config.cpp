@@ -41,6 +41,9 @@ void read_specimen(Context& ctx, const toml::table& root, CubeConfig& c) {
     if (c.dataset.empty() == c.sieve_csv.empty())
         throw InputError(ctx.file, c.dataset.empty() ? 0 : line,
                          "[specimen] needs either dataset (with sand) or sieve_csv, not " + std::string(c.dataset.empty() ? "neither" : "both"));
+    const std::string key = c.dataset.empty() ? "specimen.sieve_csv" : "specimen.dataset";
+    const KeyInfo& given = ctx.keys[key];
+    c.source_key = {key, given.text, given.line, ctx.dir};
     if (!c.dataset.empty() && c.sand.empty())
         throw InputError(ctx.file, ctx.keys["specimen.dataset"].line, "key 'specimen.sand' is required with specimen.dataset");
     if (c.dataset.empty() && !c.sand.empty())
@@ -243,6 +246,15 @@ CubeConfig load_cube_config(const fs::path& toml_file) {
 }
 
 lab::GradationCurve load_gradation(const CubeConfig& c) {
+    const fs::path& source = c.sieve_csv.empty() ? c.dataset : c.sieve_csv;
+    std::error_code ec;
+    if (!source.empty() && !fs::exists(source, ec)) {
+        const CubeConfig::SourceKey& k = c.source_key;
+        throw InputError(c.file.string(), k.line,
+                         "key '" + k.key + "' = " + k.text + ": no such file or folder " + source.string() +
+                             (k.dir.empty() ? std::string() : " (relative paths are resolved against the config's folder " +
+                                                                  k.dir.string() + ")"));
+    }
     if (!c.sieve_csv.empty()) return lab::read_sieve_csv(c.sieve_csv).curve;
     const lab::DatasetConfig dataset = lab::load_dataset_config(c.dataset, false);
     std::string names;

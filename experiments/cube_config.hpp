@@ -30,6 +30,14 @@ struct CubeConfig {
     std::filesystem::path dataset;     ///< lab dataset folder or TOML (with `sand`), or empty
     std::string sand;                  ///< sand name in the dataset
     std::filesystem::path sieve_csv;   ///< or a sieve table (then dataset is empty)
+    /// Where the sand's source was given (specimen.dataset or specimen.sieve_csv), for the
+    /// message when nothing is there: the key, its text as written, its line, and the folder
+    /// a relative path was resolved against.
+    struct SourceKey {
+        std::string key, text;
+        int line = 0;
+        std::filesystem::path dir;
+    } source_key;
     std::string representation = "parallel_bonds";  ///< or "explicit_paste" ([mix], [paste]: paste_config.hpp)
     SpecimenSpec specimen;
     MaterialParams material;
@@ -46,7 +54,8 @@ CubeConfig load_cube_config(const std::filesystem::path& toml_file);
 
 /// The gradation curve of the configured sand (dataset sand's sieve file, or sieve_csv).
 /// Throws common::InputError naming the config file when the sand is not in the dataset, and the
-/// readers' InputError for a bad dataset or sieve file.
+/// readers' InputError for a bad dataset or sieve file; a source path with nothing there is an
+/// InputError naming its key, line and the folder it was resolved against.
 lab::GradationCurve load_gradation(const CubeConfig& config);
 
 /// The strain rate [1/s] to run at: the configured one, or quasi_static_strain_rate() for

@@ -106,15 +106,24 @@ double gap_for_coordination(const std::vector<Vec3>& x, const std::vector<double
     return std::max(0.0, gaps[k]);
 }
 
+// Rock-salt cells per edge for about `target_count` spheres (8 sites a cell).
+std::int64_t lattice_cells(std::int64_t target_count) {
+    return std::max<std::int64_t>(1, std::llround(std::cbrt(static_cast<double>(target_count) / 8.0)));
+}
+
 }  // namespace
+
+std::int64_t quick_packing_count(std::int64_t target_count) {
+    const std::int64_t m = lattice_cells(target_count);
+    return 8 * m * m * m;
+}
 
 QuickPacking make_quick_packing(const QuickPackingSpec& spec) {
     if (spec.target_count < 4) throw std::invalid_argument("QuickPackingSpec::target_count < 4");
     if (!(spec.max_radius > 0.0)) throw std::invalid_argument("QuickPackingSpec::max_radius <= 0");
     if (!(spec.radius_ratio >= 1.0)) throw std::invalid_argument("QuickPackingSpec::radius_ratio < 1");
     SplitMix64 rng(spec.seed);
-    const auto m = std::max<std::int64_t>(
-        1, std::llround(std::cbrt(static_cast<double>(spec.target_count) / 8.0)));
+    const std::int64_t m = lattice_cells(spec.target_count);
     const std::vector<Site> sites = rock_salt_sites(m, spec.max_radius, spec.jitter, rng);
     std::vector<Vec3> x(sites.size());
     for (std::size_t i = 0; i < sites.size(); ++i) x[i] = sites[i].x;

@@ -30,4 +30,8 @@ struct QuickPacking {
 
 QuickPacking make_quick_packing(const QuickPackingSpec& spec);
 
+/// The number of spheres make_quick_packing() makes for `target_count`: the lattice has 8 m^3
+/// sites, m = round(cbrt(target_count / 8)) >= 1 (216, 512, 1000, ..., 4096, ...).
+std::int64_t quick_packing_count(std::int64_t target_count);
+
 }  // namespace gradem::exp

@@ -166,13 +166,24 @@ HtmlReportOutcome write_html_report(ReportKind kind, const fs::path& out_dir) {
     }
 }
 
+std::vector<std::string> report_kind_names() {
+    std::vector<std::string> names;
+    for (ReportKind k : {ReportKind::lab, ReportKind::compress, ReportKind::calibrate, ReportKind::study})
+        names.emplace_back(to_string(k));
+    return names;
+}
+
 bool write_html_report_or_warn(ReportKind kind, const fs::path& out_dir, std::ostream& announce) {
+    return write_html_report_or_warn(kind, out_dir, announce, std::cerr);
+}
+
+bool write_html_report_or_warn(ReportKind kind, const fs::path& out_dir, std::ostream& announce, std::ostream& warn) {
     const HtmlReportOutcome o = write_html_report(kind, out_dir);
     if (o.written()) {
         announce << "report: " << o.path.lexically_normal().string() << "\n";
         return true;
     }
-    std::cerr << "gradem: warning: no report.html in " << out_dir.string() << ": " << o.problem << "\n"
+    warn << "gradem: warning: no report.html in " << out_dir.string() << ": " << o.problem << "\n"
               << "gradem: the other results in " << out_dir.string() << " are complete; make the report later with: gradem report "
               << to_string(kind) << " " << out_dir.string() << "\n";
     return false;

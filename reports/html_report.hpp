@@ -15,6 +15,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace gradem::report {
 
@@ -22,6 +23,8 @@ enum class ReportKind { lab, compress, calibrate, study };
 
 const char* to_string(ReportKind kind);
 std::optional<ReportKind> parse_report_kind(std::string_view name);
+/// Every kind parse_report_kind() accepts, in order: {"lab", "compress", "calibrate", "study"}.
+std::vector<std::string> report_kind_names();
 
 /// The interpreter that runs the generator: $GRADEM_PYTHON if set (tests use it to simulate a
 /// missing interpreter or library), else /usr/bin/python3.
@@ -46,7 +49,10 @@ struct HtmlReportOutcome {
 HtmlReportOutcome write_html_report(ReportKind kind, const std::filesystem::path& out_dir);
 
 /// The end of a command: writes the report and prints "report: <path>" on `announce`, or a
-/// warning on stderr saying why there is none and what to install. Returns whether it was written.
+/// warning on `warn` (stderr unless given) saying why there is none and what to install. Returns
+/// whether it was written.
 bool write_html_report_or_warn(ReportKind kind, const std::filesystem::path& out_dir, std::ostream& announce);
+bool write_html_report_or_warn(ReportKind kind, const std::filesystem::path& out_dir, std::ostream& announce,
+                               std::ostream& warn);
 
 }  // namespace gradem::report

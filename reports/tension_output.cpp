@@ -31,12 +31,12 @@ double ratio(double numerator, double denominator) {
                                                                                          : std::nan("");
 }
 
-}  // namespace
-
-CompressionReference read_compression_reference(const std::filesystem::path& file, const CubeConfig& c,
-                                                const Packing& k) {
+json read_compression_document(const std::filesystem::path& file) {
     const std::string name = file.string();
     std::ifstream in(file);
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec))
+        throw common::InputError(name, 0, "no such file (the compression macro.json: `gradem compress` writes it)");
     if (!in) throw common::InputError(name, 0, "cannot read the compression macro.json");
     json doc;
     try {
@@ -48,6 +48,17 @@ CompressionReference read_compression_reference(const std::filesystem::path& fil
         !doc["peak_stress_mpa"].is_number())
         throw common::InputError(name, 0, "not the macro.json of a compression test (`gradem compress`): expected a "
                                        "numeric peak_stress_mpa and no tensile_strength_mpa");
+    return doc;
+}
+
+}  // namespace
+
+void check_compression_file(const std::filesystem::path& file) { (void)read_compression_document(file); }
+
+CompressionReference read_compression_reference(const std::filesystem::path& file, const CubeConfig& c,
+                                                const Packing& k) {
+    const std::string name = file.string();
+    json doc = read_compression_document(file);
     const json mine = shared_document(TensionTestResult{}, c, k, 0.0, std::nullopt);  // material, specimen: no result needed
     for (const char* block : {"material", "specimen"})
         if (!doc.contains(block) || doc[block] != mine[block])

@@ -27,6 +27,12 @@ struct CompressionReference {
     double chord_modulus = 0.0;    ///< [Pa] (NaN if it was not reduced)
 };
 
+/// Reads a compression macro.json and checks what can be checked before a packing exists: the
+/// file is readable JSON and the macro.json of a compression test (a numeric peak_stress_mpa,
+/// no tensile_strength_mpa). Throws common::InputError naming the file. The tension command
+/// calls it before genesis, read_compression_reference() once the packing is there.
+void check_compression_file(const std::filesystem::path& macro_json_file);
+
 /// Reads a compression macro.json and checks that it is of the same material and specimen as
 /// the tension run (its "material" and "specimen" blocks equal the ones this run writes).
 /// Throws common::InputError naming the file and what differs or is missing.
