@@ -56,7 +56,8 @@ bool contains_word(const std::string& name, const std::string& word) {
 // another quantity rules it out ("Load" in mm is not a load).
 bool unit_compatible(const RawColumn& col, const RoleRule& rule, const ChannelOverrides& overrides) {
     const auto it = overrides.unit.find(rule.role);
-    const std::string spelling = it != overrides.unit.end() ? it->second : col.unit;
+    std::string spelling = it != overrides.unit.end() ? it->second : col.unit;
+    if (!spelling.empty() && spelling.front() == '!') spelling.erase(0, 1);  // a forced override
     const auto unit = parse_unit(spelling);
     if (!unit) return true;
     for (Quantity q : rule.quantities)

@@ -27,10 +27,22 @@ Quantity role_quantity(ChannelRole role) {
     return Quantity::force;
 }
 
-// The unit of a role column, from the override or the file; InputError when missing/unknown.
+// The unit of a role column, from the override or the file; InputError when missing/unknown,
+// and when an override contradicts a unit the file's header states (a different scale: the
+// header is more likely right than a guess), unless the override is forced with a leading '!'.
 Unit column_unit(const RawTable& t, const RawColumn& col, ChannelRole role, const ChannelOverrides& o) {
     const auto it = o.unit.find(role);
-    const std::string spelling = it != o.unit.end() ? it->second : col.unit;
+    const bool forced = it != o.unit.end() && !trim(it->second).empty() && trim(it->second).front() == '!';
+    const std::string spelling = it == o.unit.end() ? col.unit : forced ? trim(it->second).substr(1) : it->second;
+    if (it != o.unit.end() && !forced) {
+        const auto header = parse_unit(col.unit), given = parse_unit(spelling);
+        if (header && given && header->to_si != given->to_si)
+            throw InputError(t.file, col.header_line,
+                             column_prefix(col.name) + "the unit override '" + spelling + "' for " + role_name(role) +
+                                 " contradicts the header's unit '" + col.unit + "'; drop the override, or force it with '!" +
+                                 spelling + "' (--unit " + role_name(role) + "=!" + spelling + ", or [columns] " + role_name(role) +
+                                 "_unit = \"!" + spelling + "\")");
+    }
     const Quantity want = role_quantity(role);
     const std::string hint = std::string("expected a ") + quantity_name(want) + " unit (" + accepted_units(want) +
                              "); set [columns] " + role_name(role) + "_unit in the config if the file does not say";

@@ -143,6 +143,18 @@ TEST_CASE("lab: plain CSV with units in the names and overrides of roles and uni
     CHECK(u.load_n[3] == Approx(12000.0));
     CHECK(u.strain[3] == Approx(0.0006));
 
+    // An override that contradicts the header's unit is refused, unless forced with '!'.
+    const std::string kn = "Time (s),Force (kN),Strain (%)\n0,0,0\n1,5,0.02\n2,10,0.04\n3,12,0.06\n4,11,0.08\n";
+    ReadOptions wrong;
+    wrong.channels.unit = {{ChannelRole::load, "N"}};
+    REQUIRE_THROWS_WITH(read_load_frame_bytes(kn, "kn.csv", wrong),
+                        Contains("kn.csv:1: column 'Force'") && Contains("override 'N' for load contradicts the header's unit 'kN'") &&
+                            Contains("'!N'"));
+    wrong.channels.unit = {{ChannelRole::load, "!N"}};
+    CHECK(read_load_frame_bytes(kn, "kn.csv", wrong).load_n[3] == Approx(12.0));
+    wrong.channels.unit = {{ChannelRole::load, "kN"}};  // agreeing with the header: fine
+    CHECK(read_load_frame_bytes(kn, "kn.csv", wrong).load_n[3] == Approx(12000.0));
+
     o.channels.column.emplace(ChannelRole::load, "Missing Column");
     REQUIRE_THROWS_WITH(read_load_frame_bytes(no_units, "x.csv", o), Contains("column 'Missing Column' (configured as the load column)"));
 }
