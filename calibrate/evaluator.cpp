@@ -22,27 +22,29 @@ void mean_and_std(const std::vector<const RunOutcome*>& runs, Quantity q, double
     std = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
 }
 
+/// The primary test, then the tension companion when a compression calibration fits tension.
+std::vector<CubeTest> tests_of(const CalibrationProblem& problem, CubeTest primary) {
+    if (primary == CubeTest::compression && problem.tension.fitted()) return {CubeTest::compression, CubeTest::tension};
+    return {primary};
+}
+
 }  // namespace
 
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
                      const CubeModel& model, std::function<void(const Progress&)> progress, CubeTest primary)
     : problem_(problem), space_(space), executor_(executor), ledger_(ledger), primary_(primary),
-      progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {
+      tests_(tests_of(problem, primary)), progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {
     for (CubeTest t : tests()) fingerprint_[static_cast<int>(t)] = model.run_fingerprint(t);
 }
 
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, const CubeModel& model, Ledger& ledger,
                      std::function<void(const Progress&)> progress, CubeTest primary)
     : problem_(problem), space_(space), own_executor_(std::make_unique<ThreadExecutor>(model, problem.workers)),
-      executor_(*own_executor_), ledger_(ledger), primary_(primary), progress_(std::move(progress)),
-      start_(std::chrono::steady_clock::now()) {
+      executor_(*own_executor_), ledger_(ledger), primary_(primary),
+      tests_(tests_of(problem, primary)), progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {
     for (CubeTest t : tests()) fingerprint_[static_cast<int>(t)] = model.run_fingerprint(t);
 }
 
-std::vector<CubeTest> Evaluator::tests() const {
-    if (primary_ == CubeTest::compression && problem_.tension.fitted()) return {CubeTest::compression, CubeTest::tension};
-    return {primary_};
-}
 
 double Evaluator::seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

@@ -97,7 +97,7 @@ public:
 
 private:
     /// The tests each (point, sand, seed) runs: the primary one, then its tension companion.
-    [[nodiscard]] std::vector<CubeTest> tests() const;
+    [[nodiscard]] const std::vector<CubeTest>& tests() const { return tests_; }
     std::string run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed, CubeTest test) const;
     std::string parameters_json(const std::vector<double>& values) const;
     SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs, const std::vector<RunOutcome>& tension_runs) const;
@@ -109,6 +109,7 @@ private:
     RunExecutor& executor_;
     Ledger& ledger_;
     CubeTest primary_;
+    std::vector<CubeTest> tests_;  ///< see tests()
     std::string fingerprint_[2];  ///< run fingerprints by CubeTest (the tension one only when it runs)
     std::function<void(const Progress&)> progress_;
     std::set<std::string> used_;

@@ -171,7 +171,11 @@ LabStats analyse_lab_dataset(const DatasetConfig& config) {
     return lab;
 }
 
-LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConfig& config) {
+namespace {
+
+// The results of loose files (no dataset): one group named "files", filled by `add`.
+template <typename AddFiles>
+LabStats analyse_loose_files(const DatasetConfig& config, AddFiles add) {
     LabStats lab;
     lab.dataset = config.name;
     lab.source = "files";
@@ -179,40 +183,39 @@ LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConf
     lab.reduction = config.reduction;
     SandResult group;
     group.name = "files";
-    for (const auto& f : files) {
-        CubeResult cube = reduce_cube_file(f, f.string(), config);
-        cube.sand = group.name;
-        group.cubes.push_back(lab.cubes.size());
-        lab.representative = lab.representative || cube.representative;
-        lab.cubes.push_back(std::move(cube));
-    }
-    group.stats = statistics_of(lab.cubes, group.cubes);
+    add(lab, group);
     lab.sands.push_back(std::move(group));
     if (lab.representative && lab.note.empty())
         lab.note = "at least one file says it holds REPRESENTATIVE (synthetic) data, not measurements";
     return lab;
 }
 
+}  // namespace
+
+LabStats analyse_lab_files(const std::vector<fs::path>& files, const DatasetConfig& config) {
+    return analyse_loose_files(config, [&](LabStats& lab, SandResult& group) {
+        for (const auto& f : files) {
+            CubeResult cube = reduce_cube_file(f, f.string(), config);
+            cube.sand = group.name;
+            group.cubes.push_back(lab.cubes.size());
+            lab.representative = lab.representative || cube.representative;
+            lab.cubes.push_back(std::move(cube));
+        }
+        group.stats = statistics_of(lab.cubes, group.cubes);
+    });
+}
+
 LabStats analyse_tension_files(const std::vector<fs::path>& files, const TensileSpec& spec, const DatasetConfig& config) {
-    LabStats lab;
-    lab.dataset = config.name;
-    lab.source = "files";
-    lab.note = config.note;
-    lab.reduction = config.reduction;
-    SandResult group;
-    group.name = "files";
-    for (const auto& f : files) {
-        TensileResult t = read_tensile_file(f, f.string(), spec, config.read);
-        t.sand = group.name;
-        group.tensile.push_back(lab.tensile_tests.size());
-        lab.representative = lab.representative || t.representative;
-        lab.tensile_tests.push_back(std::move(t));
-    }
-    group.tensile_stats = tensile_statistics_of(lab.tensile_tests, group.tensile);
-    lab.sands.push_back(std::move(group));
-    if (lab.representative && lab.note.empty())
-        lab.note = "at least one file says it holds REPRESENTATIVE (synthetic) data, not measurements";
-    return lab;
+    return analyse_loose_files(config, [&](LabStats& lab, SandResult& group) {
+        for (const auto& f : files) {
+            TensileResult t = read_tensile_file(f, f.string(), spec, config.read);
+            t.sand = group.name;
+            group.tensile.push_back(lab.tensile_tests.size());
+            lab.representative = lab.representative || t.representative;
+            lab.tensile_tests.push_back(std::move(t));
+        }
+        group.tensile_stats = tensile_statistics_of(lab.tensile_tests, group.tensile);
+    });
 }
 
 namespace {

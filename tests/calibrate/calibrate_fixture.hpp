@@ -13,12 +13,25 @@
 #include "calibrate/calibration.hpp"
 #include "calibrate/cube_model.hpp"
 #include "calibrate/parameters.hpp"
+#include "experiments/cube_config.hpp"
 #include "../temp_dir.hpp"
 
 namespace gradem::test {
 
 inline std::filesystem::path calibration_base_config() {
     return std::filesystem::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "calibration_cube.toml";
+}
+
+/// The base config's material with the four default free parameters (E* GPa, σ̄c MPa, c̄/σ̄c,
+/// strength cv, in this order) set to `values`.
+inline exp::MaterialParams material_at(const std::vector<double>& values) {
+    const exp::MaterialParams base = exp::load_cube_config(calibration_base_config()).material;
+    std::vector<cal::ParameterSpec> specs;
+    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
+        specs.push_back(cal::default_parameter(name, base));
+        specs.back().free = true;
+    }
+    return cal::ParameterSpace(specs, base).material(values);
 }
 
 /// Lab targets = the model's seed means at `material` over `seeds` (with their spread as std);

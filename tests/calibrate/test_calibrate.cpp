@@ -29,16 +29,7 @@ namespace {
 const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
 const std::vector<double> kTruth = {20.0, 12.0, 1.6, 0.25};  // E* GPa, σ̄c MPa, c̄/σ̄c, cv (canonical order)
 
-/// The base material with the four default free parameters set to `values`.
-exp::MaterialParams material_at(const std::vector<double>& values) {
-    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
-    std::vector<cal::ParameterSpec> specs;
-    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
-        specs.push_back(cal::default_parameter(name, base));
-        specs.back().free = true;
-    }
-    return cal::ParameterSpace(specs, base).material(values);
-}
+using test::material_at;
 
 /// A twin problem: targets from the analytic model at kTruth over seeds 101-110.
 fs::path twin_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& method, int max_runs,

@@ -26,15 +26,7 @@ namespace {
 const std::vector<std::string> kOneSand = {"pre-blended"};
 constexpr double kTruthModulus = 20.0, kTruthStrength = 12.0, kTruthRatio = 1.6, kCv = 0.25;  // GPa, MPa, -, -
 
-exp::MaterialParams truth_material() {
-    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
-    std::vector<cal::ParameterSpec> specs;
-    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
-        specs.push_back(cal::default_parameter(name, base));
-        specs.back().free = true;
-    }
-    return cal::ParameterSpace(specs, base).material({kTruthModulus, kTruthStrength, kTruthRatio, kCv});
-}
+exp::MaterialParams truth_material() { return test::material_at({kTruthModulus, kTruthStrength, kTruthRatio, kCv}); }
 
 /// One sand, E* σ̄c and c̄/σ̄c free, the strength cv fixed at the truth, no strain target: the
 /// compression test alone gives E and σc, two numbers for three parameters (σc = σ̄c p ρ^q

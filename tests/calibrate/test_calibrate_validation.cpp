@@ -18,15 +18,7 @@ namespace {
 
 const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
 
-exp::MaterialParams truth_material() {
-    const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
-    std::vector<cal::ParameterSpec> specs;
-    for (const char* name : {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}) {
-        specs.push_back(cal::default_parameter(name, base));
-        specs.back().free = true;
-    }
-    return cal::ParameterSpace(specs, base).material({20.0, 12.0, 1.6, 0.25});
-}
+exp::MaterialParams truth_material() { return test::material_at({20.0, 12.0, 1.6, 0.25}); }
 
 fs::path problem_with(const fs::path& dir, const cal::CubeModel& model, const std::string& validation) {
     test::write_text(dir / "lab_results.json",

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "app/lab_command.hpp"
+#include "lab_command_run.hpp"
 #include "lab_data/lab_stats.hpp"
 #include "lab_data/text.hpp"
 #include "reports/lab_report.hpp"
@@ -22,29 +23,9 @@ namespace {
 const std::string kStudy = GRADEM_LAB_STUDY;
 std::string fixture(const char* name) { return std::string(GRADEM_LAB_FIXTURES) + "/" + name; }
 
-struct Run {
-    int status = 0;
-    std::string out, err;
-};
-
-Run run(const std::vector<std::string>& args) {
-    std::ostringstream out, err;
-    auto* old_out = std::cout.rdbuf(out.rdbuf());
-    auto* old_err = std::cerr.rdbuf(err.rdbuf());
-    Run r;
-    r.status = run_lab_command(args);
-    std::cout.rdbuf(old_out);
-    std::cerr.rdbuf(old_err);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-}
-
-fs::path scratch(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("gradem_lab_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    return p;
-}
+using Run = gradem::test::LabRun;
+Run run(const std::vector<std::string>& args) { return gradem::test::run_lab(args); }
+fs::path scratch(const std::string& name) { return gradem::test::lab_scratch("gradem_lab_test_", name); }
 
 // generator_truth.csv: the law parameters each representative cube was generated from.
 std::map<std::string, std::map<std::string, double>> truth() {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "app/lab_command.hpp"
+#include "lab_command_run.hpp"
 #include "common/input_error.hpp"
 #include "lab_data/lab_stats.hpp"
 #include "lab_data/tension.hpp"
@@ -29,29 +30,9 @@ const std::string kDataset = kFixtures + "/tension_dataset";
 // α_fl for h = 40 mm: 0.06 · 40^0.7 = 0.793609; 0.793609 / 1.793609 = 0.442457.
 constexpr double kAlpha40 = 0.44245731;
 
-struct Run {
-    int status = 0;
-    std::string out, err;
-};
-
-Run run(const std::vector<std::string>& args) {
-    std::ostringstream out, err;
-    auto* old_out = std::cout.rdbuf(out.rdbuf());
-    auto* old_err = std::cerr.rdbuf(err.rdbuf());
-    Run r;
-    r.status = run_lab_command(args);
-    std::cout.rdbuf(old_out);
-    std::cerr.rdbuf(old_err);
-    r.out = out.str();
-    r.err = err.str();
-    return r;
-}
-
-fs::path scratch(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("gradem_tensile_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    return p;
-}
+using Run = gradem::test::LabRun;
+Run run(const std::vector<std::string>& args) { return gradem::test::run_lab(args); }
+fs::path scratch(const std::string& name) { return gradem::test::lab_scratch("gradem_tensile_test_", name); }
 
 // A dataset folder holding only `toml` (paths in it may point at the fixtures).
 fs::path dataset_with(const std::string& name, const std::string& toml) {
