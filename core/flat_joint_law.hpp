@@ -104,25 +104,99 @@ struct JointFrame {
     double normal = 0;      ///< U_n [m], opening +
 };
 
-inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
-    using namespace flat_side;
+/// The frame after this step's increments from the stored header (axis t1, bending θ_b, twist
+/// θ_t, U_n); `bend_total` receives the carried θ_b. Pure: the vectorised pass over joints
+/// (world_flat_joints.cpp) calls it as carry_frame() does, so both give the same bits.
+inline JointFrame advance_frame(const Vec3& axis0, const Vec3& bend0, double twist0, double normal0,
+                                const PairKinematics& kin, Vec3& bend_total) {
     JointFrame f;
-    Vec3 t1 = rotate_into_plane({side[axis], side[axis + 1], side[axis + 2]}, kin);
+    const Vec3 t1 = rotate_into_plane(axis0, kin);
     f.t1 = (1.0 / norm(t1)) * t1;
     f.t2 = cross(kin.normal, f.t1);
-    const Vec3 bend_total = rotate_into_plane({side[bend], side[bend + 1], side[bend + 2]}, kin) + kin.bend_angle;
-    f.twist = side[twist] + kin.twist_angle;
-    f.normal = side[normal] + kin.du_normal;
-    side[axis] = f.t1.x, side[axis + 1] = f.t1.y, side[axis + 2] = f.t1.z;
-    side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
-    side[twist] = f.twist;
-    side[normal] = f.normal;
+    bend_total = rotate_into_plane(bend0, kin) + kin.bend_angle;
+    f.twist = twist0 + kin.twist_angle;
+    f.normal = normal0 + kin.du_normal;
     // θ_b = a t1 + b t2  ->  w = n x θ_b = a t2 - b t1.
     const double a = dot(bend_total, f.t1), b = dot(bend_total, f.t2);
     f.wy = -b;
     f.wz = a;
     f.w_norm = std::sqrt(a * a + b * b);
     return f;
+}
+
+inline JointFrame carry_frame(double* side, const PairKinematics& kin) {
+    using namespace flat_side;
+    Vec3 bend_total;
+    const JointFrame f = advance_frame({side[axis], side[axis + 1], side[axis + 2]},
+                                       {side[bend], side[bend + 1], side[bend + 2]}, side[twist], side[normal], kin,
+                                       bend_total);
+    side[axis] = f.t1.x, side[axis + 1] = f.t1.y, side[axis + 2] = f.t1.z;
+    side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
+    side[twist] = f.twist;
+    side[normal] = f.normal;
+    return f;
+}
+
+/// The joint's per-step constants: k̄_n, k̄_s across the installation gap [Pa/m], R̄ [m] and
+/// the shear increments of the contact point in (t1, t2) [m].
+struct JointStep {
+    double kn = 0, ks = 0, R = 0, R2 = 0, ksR4 = 0, inv_ks_r2 = 0;
+    double du1 = 0, du2 = 0, dtwist = 0;
+};
+inline JointStep joint_step(const JointFrame& f, double scale, const BondStiffness& k_touching, double radius,
+                            const PairKinematics& kin) {
+    JointStep j;
+    j.kn = k_touching.normal * scale;
+    j.ks = k_touching.shear * scale;
+    j.R = radius;
+    j.R2 = j.R * j.R;
+    j.ksR4 = j.ks * j.R2 * j.R2;
+    j.inv_ks_r2 = 1.0 / (j.ks * j.R2);
+    j.du1 = dot(kin.du_shear, f.t1);
+    j.du2 = dot(kin.du_shear, f.t2);
+    j.dtwist = kin.twist_angle;
+    return j;
+}
+
+/// One element's kinematics and elastic trial shear: centroid x_e [m] in (t1, t2), opening
+/// δ_e [m], shear increment dU_s + dθ_t n x x_e [m], trial F_s,e [N].
+struct ElementTrial {
+    double xy = 0, xz = 0, inv_ksa = 0, opening = 0, du1 = 0, du2 = 0, s1 = 0, s2 = 0;
+};
+inline ElementTrial element_trial(const FlatElementGeometry& g, const JointFrame& f, const JointStep& j, double old1,
+                                  double old2) {
+    ElementTrial t;
+    t.xy = j.R * g.y;
+    t.xz = j.R * g.z;
+    const double ksa = j.ks * j.R2 * g.area;
+    t.inv_ksa = j.inv_ks_r2 * g.inv_area;
+    t.opening = f.normal + f.wy * t.xy + f.wz * t.xz;
+    // Elastic trial shear: F_s,e -= k̄_s A_e (dU_s + dθ_t n x x_e), in (t1, t2).
+    t.du1 = j.du1 - j.dtwist * t.xz;
+    t.du2 = j.du2 + j.dtwist * t.xy;
+    t.s1 = old1 - ksa * t.du1;
+    t.s2 = old2 - ksa * t.du2;
+    return t;
+}
+
+/// Σ over the elements, in element order: shear (t1, t2) [N], normal force (tension +) [N],
+/// first moment P [N m], twist moment [N m], strain energy [J].
+struct JointSums {
+    double s1 = 0, s2 = 0, fn = 0, p1 = 0, p2 = 0, twist = 0, stored = 0;
+};
+
+/// Resultant on B about the contact point: F = Σ F_s,e - Σ F_n,e n;
+/// M = Σ x_e x F_s,e + n x Σ P_e + twist of bonded elements.
+struct JointResultant {
+    Vec3 shear, bend, force, moment;
+};
+inline JointResultant joint_resultant(const JointSums& s, const JointFrame& f, const Vec3& n) {
+    JointResultant r;
+    r.shear = s.s1 * f.t1 + s.s2 * f.t2;
+    r.bend = s.p1 * f.t2 - s.p2 * f.t1;
+    r.force = s.s1 * f.t1 + s.s2 * f.t2 - s.fn * n;
+    r.moment = s.twist * n + s.p1 * f.t2 - s.p2 * f.t1;
+    return r;
 }
 
 /// The normal part of one element: F_n (tension +) [N], the first moment P = ∫ σ x dA of its
@@ -211,59 +285,52 @@ struct FlatJointLaw {
         BondStepResult r;
         const Vec3& n = kin.normal;
         const JointFrame f = carry_frame(side, kin);
-        const double scale = side[flat_side::stiffness_scale];
-        const double kn = k_touching.normal * scale, ks = k_touching.shear * scale;
+        const JointStep js = joint_step(f, side[flat_side::stiffness_scale], k_touching, sec.radius, kin);
         const double g0 = side[flat_side::initial_gap];
-        const double R = sec.radius, R2 = R * R, ksR4 = ks * R2 * R2;
-        const double inv_ks_r2 = 1.0 / (ks * R2);
-        const double du1 = dot(kin.du_shear, f.t1), du2 = dot(kin.du_shear, f.t2), dtwist = kin.twist_angle;
 
-        double s1_sum = 0, s2_sum = 0, fn_sum = 0, p1_sum = 0, p2_sum = 0, twist_sum = 0, stored = 0;
+        JointSums sum;
         bool any_bonded = false, all_open = true;
         BondState last_mode = BondState::intact;
         for (std::size_t e = 0; e < c.elements.size(); ++e) {
             const FlatElementGeometry& g = c.elements[e];
             double* p = side + kFlatJointHeader + e * kFlatElementSize;
-            const double xy = R * g.y, xz = R * g.z;  // centroid from the contact point, in (t1, t2)
-            const double ksa = ks * R2 * g.area, inv_ksa = inv_ks_r2 * g.inv_area;
-            const double opening = f.normal + f.wy * xy + f.wz * xz;  // δ_e [m]
-            // Elastic trial shear: F_s,e -= k̄_s A_e (dU_s + dθ_t n x x_e), in (t1, t2).
-            const double du_e1 = du1 - dtwist * xz, du_e2 = du2 + dtwist * xy;
             const double old1 = p[1], old2 = p[2];
-            double s1 = old1 - ksa * du_e1, s2 = old2 - ksa * du_e2;
-            const double twist_energy = 0.5 * ksR4 * g.polar * f.twist * f.twist;
+            ElementTrial t = element_trial(g, f, js, old1, old2);
+            const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
             bool bonded = p[0] != 0.0, broke_now = false;
             double energy_before = 0.0;
             NormalLoad load;
             if (bonded) {
-                load = linear_normal(g, f, kn, R, opening);
-                const double inv_a = g.inv_area / R2;
-                const BondState mode = element_failure(c, b, load.fn * inv_a, (s1 * s1 + s2 * s2) * inv_a * inv_a);
+                load = linear_normal(g, f, js.kn, js.R, t.opening);
+                const double inv_a = g.inv_area / js.R2;
+                const BondState mode =
+                    element_failure(c, b, load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a);
                 if (mode != BondState::intact) {
-                    const double tau = std::sqrt(s1 * s1 + s2 * s2) * inv_a;
-                    energy_before = load.energy + 0.5 * (s1 * s1 + s2 * s2) * inv_ksa + twist_energy;
-                    breaks.push_back({mode, static_cast<std::int32_t>(e), xy * f.t1 + xz * f.t2, load.fn * inv_a, tau});
+                    const double tau = std::sqrt(t.s1 * t.s1 + t.s2 * t.s2) * inv_a;
+                    energy_before = load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
+                    breaks.push_back({mode, static_cast<std::int32_t>(e), t.xy * f.t1 + t.xz * f.t2, load.fn * inv_a, tau});
                     bonded = false;
                     broke_now = true;
                     last_mode = mode;
                 }
             }
             if (!bonded) {
-                load = unbonded_normal(g, f, kn, R, g0 + opening);
-                frictional_cap(c, s1, s2, old1, old2, du_e1, du_e2, load.fn, inv_ksa, !broke_now, r.slip);
+                load = unbonded_normal(g, f, js.kn, js.R, g0 + t.opening);
+                frictional_cap(c, t.s1, t.s2, old1, old2, t.du1, t.du2, load.fn, t.inv_ksa, !broke_now, r.slip);
             }
-            const double energy = load.energy + 0.5 * (s1 * s1 + s2 * s2) * inv_ksa + (bonded ? twist_energy : 0.0);
+            const double energy =
+                load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + (bonded ? twist_energy : 0.0);
             if (broke_now) r.released += energy_before - energy;
-            stored += energy;
+            sum.stored += energy;
             p[0] = bonded ? 1.0 : 0.0;
-            p[1] = s1;
-            p[2] = s2;
-            s1_sum += s1;
-            s2_sum += s2;
-            fn_sum += load.fn;
-            p1_sum += load.p1;
-            p2_sum += load.p2;
-            twist_sum += xy * s2 - xz * s1 - (bonded ? ksR4 * g.polar * f.twist : 0.0);
+            p[1] = t.s1;
+            p[2] = t.s2;
+            sum.s1 += t.s1;
+            sum.s2 += t.s2;
+            sum.fn += load.fn;
+            sum.p1 += load.p1;
+            sum.p2 += load.p2;
+            sum.twist += t.xy * t.s2 - t.xz * t.s1 - (bonded ? js.ksR4 * g.polar * f.twist : 0.0);
             any_bonded = any_bonded || bonded;
             all_open = all_open && load.open;
         }
@@ -273,7 +340,7 @@ struct FlatJointLaw {
                 b.interface = 1;
             }
             if (all_open && kin.gap > side[flat_side::release_gap]) {  // separated: released
-                if (c.track) r.released += stored;
+                if (c.track) r.released += sum.stored;
                 release_bond(b, b.state);
                 b.interface = 0;
                 r.failure = b.state;  // broken_* or none: no longer acting
@@ -281,17 +348,22 @@ struct FlatJointLaw {
             }
         }
         if (!c.track) r.released = 0.0;
-        if (c.track) r.stored = stored;
-        // Resultant on B: F = Σ F_s,e - Σ F_n,e n;  M = Σ x_e x F_s,e + n x Σ P_e + twist of bonded elements.
-        const Vec3 force = s1_sum * f.t1 + s2_sum * f.t2 - fn_sum * n;
-        const Vec3 moment = twist_sum * n + p1_sum * f.t2 - p2_sum * f.t1;
-        b.normal_force = fn_sum;
-        b.shear_force = s1_sum * f.t1 + s2_sum * f.t2;
-        b.twist_moment = twist_sum;
-        b.bend_moment = p1_sum * f.t2 - p2_sum * f.t1;
-        r.force_j = force;
-        r.moment_j = moment;
+        if (c.track) r.stored = sum.stored;
+        const JointResultant res = joint_resultant(sum, f, n);
+        b.normal_force = sum.fn;
+        b.shear_force = res.shear;
+        b.twist_moment = sum.twist;
+        b.bend_moment = res.bend;
+        r.force_j = res.force;
+        r.moment_j = res.moment;
         return r;
+    }
+
+    /// Whether a bonded element at mean stresses σ (tension +) [Pa] and τ² [Pa²] fails, as
+    /// element_failure() decides it, without branches (the vectorised pass).
+    static bool element_fails(double sigma, double tau2, double tensile_strength, double cohesion, double tan_phi) {
+        const double strength = cohesion - sigma * tan_phi;
+        return (sigma >= tensile_strength) | (strength <= 0.0) | (tau2 >= strength * strength);
     }
 
     static TimeStepStiffness time_step_stiffness(const BondSection& s, const BondStiffness& k,

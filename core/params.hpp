@@ -97,6 +97,9 @@ struct SimParams {
     /// outgrow this many bytes (a last-level cache: the development machine's L3, 32 MiB). Speed
     /// only: the results are bitwise the same either way (tests/core/test_pair_pass.cpp).
     std::size_t stream_prefetch_above_bytes = std::size_t{32} << 20;
+    /// Fully bonded flat joints through the vectorised pass (core/world_flat_joints.cpp; bitwise
+    /// the same results as the scalar kernel: off only to compare the two).
+    bool vectorised_flat_joints = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

@@ -201,6 +201,8 @@ private:
     /// Phases 2 and 3 in one pass for the parallel bond (world_pairs.cpp); returns the bond
     /// energies, the contact strain and slip energies through `strain` and `slip`.
     BondEnergy compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip);
+    /// Phase 3 for the flat joint, vectorised across fully bonded joints (world_flat_joints.cpp).
+    BondEnergy compute_flat_joints(double dt);
     template <class Law>
     BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);

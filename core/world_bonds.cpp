@@ -107,6 +107,7 @@ void World::refresh_bond_constants() {
 
 World::BondEnergy World::compute_bonds(double dt) {
     if (bond_const_stale_) refresh_bond_constants();
+    if (bond_params_.model == BondModel::flat_joint) return compute_flat_joints(dt);
     return visit_bond_law(bond_params_.model,
                           [&](auto law) { return compute_bonds_with<decltype(law)>(dt); });
 }

@@ -11,7 +11,8 @@ using namespace gradem::test;
 namespace {
 
 std::uint64_t run_with_threads(int threads, std::size_t& breaks,
-                               BondModel model = BondModel::parallel_bond, bool mixed_joints = false) {
+                               BondModel model = BondModel::parallel_bond, bool mixed_joints = false,
+                               const SimParams& sim = SimParams{}, EnergyLedger* energy = nullptr) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #else
@@ -19,7 +20,7 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
 #endif
     ContactParams contact;
     contact.effective_modulus = 1.0e9;
-    World world(jittered_cluster(9, 1.0e-3, 99), contact, SimParams{});
+    World world(jittered_cluster(9, 1.0e-3, 99), contact, sim);
     BondParams bp;
     bp.effective_modulus = 1.0e9;
     bp.tensile_strength_mean = 1.0e6;
@@ -45,6 +46,7 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
         for (std::size_t k = 0; k < world.bonds().size(); ++k)
             if (world.bonds()[k].state == BondState::intact && world.bond_side_state(k)[9] > 0.0) ++breaks;
     }
+    if (energy) *energy = world.energy();
     return world.state_hash();
 }
 
@@ -95,6 +97,35 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
         CHECK(b1 == b3);
         CHECK(h1 == c.hash);
         CHECK(b1 == c.breaks);
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+}
+
+// The vectorised pass over fully bonded flat joints (core/world_flat_joints.cpp) against the
+// law's scalar kernel for every joint: the same state bits, break count and every energy term,
+// on bonded-only and on mixed joints (slit, gapped, a friction angle), past the first breaks.
+TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[core][determinism]") {
+    for (const bool mixed : {false, true}) {
+        INFO((mixed ? "bonded, gapped and slit" : "bonded"));
+        SimParams scalar;
+        scalar.vectorised_flat_joints = false;
+        std::size_t b_vec = 0, b_scalar = 0;
+        EnergyLedger e_vec, e_scalar;
+        const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec);
+        const std::uint64_t h_scalar = run_with_threads(2, b_scalar, BondModel::flat_joint, mixed, scalar, &e_scalar);
+        REQUIRE(b_vec > 0);
+        CHECK(h_vec == h_scalar);
+        CHECK(b_vec == b_scalar);
+        CHECK(e_vec.kinetic == e_scalar.kinetic);
+        CHECK(e_vec.strain_contact == e_scalar.strain_contact);
+        CHECK(e_vec.strain_bond == e_scalar.strain_bond);
+        CHECK(e_vec.damping == e_scalar.damping);
+        CHECK(e_vec.friction == e_scalar.friction);
+        CHECK(e_vec.bond_break == e_scalar.bond_break);
+        CHECK(e_vec.boundary_work == e_scalar.boundary_work);
+        CHECK(e_vec.strain_bond > 0.0);
     }
 #ifdef _OPENMP
     omp_set_num_threads(2);

@@ -1,0 +1,330 @@
+// Phase 3 for the flat joint, vectorised across joints (core/flat_joint_law.hpp has the law;
+// docs/bond_laws.md "Flat joint"). Most joints of a loaded specimen are fully bonded and do
+// not break in a given step; for those the law is a fixed sequence of arithmetic per element
+// with no branch. Each block of bonds is cut into batches of kJointLanes:
+//   1. a scalar scan copies the inputs of the fully bonded joints into structure-of-arrays
+//      lanes (particle state, the joint's header and element shear forces, its constants);
+//   2. three loops over the lanes run the pair kinematics and the frame, then each element
+//      (element loop outside, lanes inside: one vector operation serves kJointLanes joints),
+//      then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function
+//      multiversioning, picked at load time);
+//   3. a scalar pass in bond order writes back the lanes whose elements all held, and runs
+//      every other acting joint (partly or wholly unbonded, or with an element that fails this
+//      step: its lane result is discarded, its state is still the old one) through
+//      FlatJointLaw::step, exactly as the generic bond phase does.
+// The lanes call the law's own helpers (advance_frame, joint_step, element_trial,
+// linear_normal, joint_resultant) in the law's order, and every lane does the same IEEE
+// operations as the scalar code (-ffp-contract=off: no FMA; no reassociation); energies are
+// summed per bond in bond order as before. So the results are bitwise those of the generic
+// phase, for any thread count (the pinned hashes in tests/core/test_determinism.cpp).
+#include <algorithm>
+#include <cstring>
+#include <memory>
+
+#include "core/flat_joint_law.hpp"
+#include "core/parallel.hpp"
+#include "core/world.hpp"
+
+namespace gradem {
+namespace {
+
+constexpr int kJointLanes = 16;
+constexpr std::size_t kMaxLaneElements = 8;  ///< joints with more elements take the scalar path
+constexpr std::int64_t kPrefetchAhead = 16;  ///< bonds: particle j's state (a random access)
+
+/// Inputs, intermediates and results of up to kJointLanes joints (structure of arrays).
+struct JointLanes {
+    int count = 0;
+    // inputs: the pair's particles, the joint's header and element shear forces, its constants
+    double xa[3][kJointLanes], xb[3][kJointLanes], va[3][kJointLanes], vb[3][kJointLanes];
+    double wa[3][kJointLanes], wb[3][kJointLanes], ra[kJointLanes], rb[kJointLanes];
+    double axis[3][kJointLanes], bend[3][kJointLanes], twist[kJointLanes], normal[kJointLanes];
+    double scale[kJointLanes], radius[kJointLanes], kn[kJointLanes], ks[kJointLanes];
+    double strength[kJointLanes], cohesion[kJointLanes], tan_phi[kJointLanes];
+    double shear[kMaxLaneElements][2][kJointLanes];  ///< F_s,e in (t1, t2): in, then out [N]
+    // the frame and step constants after this step's increments
+    double t1[3][kJointLanes], t2[3][kJointLanes], n[3][kJointLanes], arm_b[3][kJointLanes];
+    double wy[kJointLanes], wz[kJointLanes], bend_total[3][kJointLanes];
+    double jkn[kJointLanes], jks[kJointLanes], R2[kJointLanes], ksR4[kJointLanes], inv_ks_r2[kJointLanes];
+    double du1[kJointLanes], du2[kJointLanes], dtwist[kJointLanes];
+    // element sums and results
+    double s1[kJointLanes], s2[kJointLanes], fn[kJointLanes], p1[kJointLanes], p2[kJointLanes];
+    double tw[kJointLanes], stored[kJointLanes], fails[kJointLanes];
+    double force[3][kJointLanes], torque[3][kJointLanes], shear_res[3][kJointLanes], bend_res[3][kJointLanes];
+};
+
+inline Vec3 lane(const double (&a)[3][kJointLanes], int l) { return {a[0][l], a[1][l], a[2][l]}; }
+inline void set_lane(double (&a)[3][kJointLanes], int l, const Vec3& v) {
+    a[0][l] = v.x;
+    a[1][l] = v.y;
+    a[2][l] = v.z;
+}
+
+/// Loop 1: kinematics, the carried frame and the step constants of every lane.
+__attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
+    using namespace flat_detail;
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        PairState s{lane(L.xa, l), lane(L.xb, l), lane(L.va, l), lane(L.vb, l),
+                    lane(L.wa, l), lane(L.wb, l), L.ra[l], L.rb[l]};
+        PairKinematics kin = pair_kinematics(s, dt);
+        Vec3 bend_total;
+        JointFrame f = advance_frame(lane(L.axis, l), lane(L.bend, l), L.twist[l], L.normal[l], kin, bend_total);
+        JointStep js = joint_step(f, L.scale[l], {L.kn[l], L.ks[l]}, L.radius[l], kin);
+        set_lane(L.t1, l, f.t1);
+        set_lane(L.t2, l, f.t2);
+        set_lane(L.n, l, kin.normal);
+        set_lane(L.arm_b, l, kin.arm_b);
+        set_lane(L.bend_total, l, bend_total);
+        L.twist[l] = f.twist;
+        L.normal[l] = f.normal;
+        L.wy[l] = f.wy;
+        L.wz[l] = f.wz;
+        L.jkn[l] = js.kn;
+        L.jks[l] = js.ks;
+        L.R2[l] = js.R2;
+        L.ksR4[l] = js.ksR4;
+        L.inv_ks_r2[l] = js.inv_ks_r2;
+        L.du1[l] = js.du1;
+        L.du2[l] = js.du2;
+        L.dtwist[l] = js.dtwist;
+        L.s1[l] = L.s2[l] = L.fn[l] = L.p1[l] = L.p2[l] = L.tw[l] = L.stored[l] = 0.0;
+        L.fails[l] = 0.0;
+    }
+}
+
+/// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
+__attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const FlatElementGeometry& g) {
+    using namespace flat_detail;
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        JointFrame f;
+        f.wy = L.wy[l];
+        f.wz = L.wz[l];
+        f.twist = L.twist[l];
+        f.normal = L.normal[l];
+        JointStep js;
+        js.kn = L.jkn[l];
+        js.ks = L.jks[l];
+        js.R = L.radius[l];
+        js.R2 = L.R2[l];
+        js.ksR4 = L.ksR4[l];
+        js.inv_ks_r2 = L.inv_ks_r2[l];
+        js.du1 = L.du1[l];
+        js.du2 = L.du2[l];
+        js.dtwist = L.dtwist[l];
+        ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
+        const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
+        NormalLoad load = linear_normal(g, f, js.kn, js.R, t.opening);
+        const double inv_a = g.inv_area / js.R2;
+        const bool fails = FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
+                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
+        L.fails[l] = fails ? 1.0 : L.fails[l];
+        L.stored[l] += load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
+        L.shear[e][0][l] = t.s1;
+        L.shear[e][1][l] = t.s2;
+        L.s1[l] += t.s1;
+        L.s2[l] += t.s2;
+        L.fn[l] += load.fn;
+        L.p1[l] += load.p1;
+        L.p2[l] += load.p2;
+        L.tw[l] += t.xy * t.s2 - t.xz * t.s1 - js.ksR4 * g.polar * f.twist;
+    }
+}
+
+/// Loop 3: the resultant on B, and its torque about B's centre.
+__attribute__((always_inline)) inline void resultants(JointLanes& L) {
+    using namespace flat_detail;
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        JointSums sum;
+        sum.s1 = L.s1[l];
+        sum.s2 = L.s2[l];
+        sum.fn = L.fn[l];
+        sum.p1 = L.p1[l];
+        sum.p2 = L.p2[l];
+        sum.twist = L.tw[l];
+        JointFrame f;
+        f.t1 = lane(L.t1, l);
+        f.t2 = lane(L.t2, l);
+        JointResultant r = joint_resultant(sum, f, lane(L.n, l));
+        set_lane(L.force, l, r.force);
+        set_lane(L.torque, l, cross(lane(L.arm_b, l), r.force) + r.moment);
+        set_lane(L.shear_res, l, r.shear);
+        set_lane(L.bend_res, l, r.bend);
+    }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(GRADEM_NO_CLONES)
+#define GRADEM_JOINT_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define GRADEM_JOINT_CLONES
+#endif
+
+GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, double dt,
+                                                              const std::vector<FlatElementGeometry>& elements) {
+    frames(L, dt);
+    for (std::size_t e = 0; e < elements.size(); ++e) bonded_element(L, e, elements[e]);
+    resultants(L);
+}
+
+/// Whether every family's element table is the same (the lanes share one geometry).
+bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
+    const auto& a = contexts.front().elements;
+    if (a.size() > kMaxLaneElements) return false;
+    for (const auto& c : contexts) {
+        if (c.elements.size() != a.size()) return false;
+        for (std::size_t e = 0; e < a.size(); ++e) {
+            const FlatElementGeometry &x = a[e], &y = c.elements[e];
+            if (x.area != y.area || x.y != y.y || x.z != y.z || x.cyy != y.cyy || x.czz != y.czz || x.cyz != y.cyz)
+                return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+World::BondEnergy World::compute_flat_joints(double dt) {
+    using namespace flat_side;
+    const auto nb = static_cast<std::int64_t>(bonds_.size());
+    std::vector<BondEnergy> partial(static_cast<std::size_t>(block_count(nb)));
+    std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
+    std::vector<FlatJointLaw::Context> contexts;  // one per bond family pair
+    for (const BondParams& p : bond_family_params_) contexts.push_back(FlatJointLaw::context(p, sim_.track_energy));
+    const bool use_lanes = sim_.vectorised_flat_joints && same_elements(contexts);
+    const std::vector<FlatElementGeometry>& elements = contexts.front().elements;
+    const std::size_t n_elements = elements.size();
+    const std::size_t stride = bond_side_stride_;
+    const bool track = sim_.track_energy;
+
+    for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        BondEnergy e;
+        std::vector<BondBreak> breaks;
+        auto lanes = std::make_unique<JointLanes>();
+        JointLanes& L = *lanes;
+        std::int8_t which[kJointLanes];  // per bond of the batch: its lane, -1 scalar or not acting
+        // A joint through the law's scalar kernel, as the generic bond phase does.
+        auto scalar_joint = [&](std::int64_t k) {
+            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+            const PairState s{particles_.position[i], particles_.position[j], particles_.velocity[i],
+                              particles_.velocity[j], particles_.spin[i],     particles_.spin[j],
+                              particles_.radius[i],   particles_.radius[j]};
+            const PairKinematics kin = pair_kinematics(s, dt);
+            const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
+            const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
+            double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+            const BondStepResult r = FlatJointLaw::step(contexts[b.family_pair], b, side, sec, bc.stiffness, kin, breaks);
+            e.stored += r.stored;
+            e.released += r.released;
+            e.damage += r.damage;
+            e.slip += r.slip;
+            for (const BondBreak& x : breaks)
+                broken[static_cast<std::size_t>(blk)].push_back({step_, time_, static_cast<std::int32_t>(k), b.i, b.j,
+                                                                 x.mode, s.xa + kin.arm_a + x.offset, kin.normal,
+                                                                 sec.radius, x.tensile_stress, x.shear_stress,
+                                                                 x.element});
+            breaks.clear();
+            if (r.failure != BondState::intact) return;
+            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
+            out.force_j += r.force_j;
+            out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
+        };
+        // A fully bonded joint whose elements all held: the lane's results become its state.
+        auto store_lane = [&](std::int64_t k, int l) {
+            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+            double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+            const Vec3 t1 = lane(L.t1, l), bend_total = lane(L.bend_total, l);
+            side[axis] = t1.x, side[axis + 1] = t1.y, side[axis + 2] = t1.z;
+            side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
+            side[twist] = L.twist[l];
+            side[normal] = L.normal[l];
+            for (std::size_t el = 0; el < n_elements; ++el) {
+                double* p = side + kFlatJointHeader + el * kFlatElementSize;
+                p[1] = L.shear[el][0][l];
+                p[2] = L.shear[el][1][l];
+            }
+            b.normal_force = L.fn[l];
+            b.shear_force = lane(L.shear_res, l);
+            b.twist_moment = L.tw[l];
+            b.bend_moment = lane(L.bend_res, l);
+            BondStepResult r;
+            r.stored = track ? L.stored[l] : 0.0;
+            e.stored += r.stored;
+            e.released += r.released;
+            e.damage += r.damage;
+            e.slip += r.slip;
+            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
+            out.force_j += lane(L.force, l);
+            out.torque_j += lane(L.torque, l);
+        };
+        for (std::int64_t b0 = begin; b0 < end; b0 += kJointLanes) {
+            const std::int64_t b1 = std::min(end, b0 + kJointLanes);
+            int count = 0;
+            // 1. scan: the fully bonded joints into lanes
+            for (std::int64_t k = b0; k < b1; ++k) {
+                if (k + kPrefetchAhead < end) {
+                    const auto jn = static_cast<std::size_t>(bonds_[static_cast<std::size_t>(k + kPrefetchAhead)].j);
+                    __builtin_prefetch(&particles_.position[jn]);
+                    __builtin_prefetch(&particles_.velocity[jn]);
+                    __builtin_prefetch(&particles_.spin[jn]);
+                }
+                const auto slot = static_cast<std::size_t>(k - b0);
+                which[slot] = -1;
+                const ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+                if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
+                const double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+                bool all_bonded = true;
+                for (std::size_t el = 0; el < n_elements; ++el)
+                    all_bonded = all_bonded && side[kFlatJointHeader + el * kFlatElementSize] != 0.0;
+                if (!all_bonded) continue;
+                const int l = count++;
+                which[slot] = static_cast<std::int8_t>(l);
+                const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+                set_lane(L.xa, l, particles_.position[i]);
+                set_lane(L.xb, l, particles_.position[j]);
+                set_lane(L.va, l, particles_.velocity[i]);
+                set_lane(L.vb, l, particles_.velocity[j]);
+                set_lane(L.wa, l, particles_.spin[i]);
+                set_lane(L.wb, l, particles_.spin[j]);
+                L.ra[l] = particles_.radius[i];
+                L.rb[l] = particles_.radius[j];
+                set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});
+                set_lane(L.bend, l, {side[bend], side[bend + 1], side[bend + 2]});
+                L.twist[l] = side[twist];
+                L.normal[l] = side[normal];
+                L.scale[l] = side[stiffness_scale];
+                for (std::size_t el = 0; el < n_elements; ++el) {
+                    const double* p = side + kFlatJointHeader + el * kFlatElementSize;
+                    L.shear[el][0][l] = p[1];
+                    L.shear[el][1][l] = p[2];
+                }
+                const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
+                L.radius[l] = bc.radius;
+                L.kn[l] = bc.stiffness.normal;
+                L.ks[l] = bc.stiffness.shear;
+                L.strength[l] = b.tensile_strength;
+                L.cohesion[l] = b.cohesion;
+                L.tan_phi[l] = contexts[b.family_pair].tan_phi;
+            }
+            // 2. the arithmetic of the fully bonded joints, vectorised across them
+            L.count = count;
+            if (count > 0) joint_lanes(L, dt, elements);
+            // 3. in bond order: the lanes that held, every other acting joint through the law
+            for (std::int64_t k = b0; k < b1; ++k) {
+                const int l = which[static_cast<std::size_t>(k - b0)];
+                if (l >= 0 && L.fails[l] == 0.0) store_lane(k, l);
+                else if (bond_acts(bonds_[static_cast<std::size_t>(k)])) scalar_joint(k);
+            }
+        }
+        partial[static_cast<std::size_t>(blk)] = e;
+    });
+    for (auto& list : broken) breaks_.insert(breaks_.end(), list.begin(), list.end());
+    return ordered_sum(partial);
+}
+
+}  // namespace gradem
