@@ -246,18 +246,14 @@ std::uint64_t compressed_mix_hash(std::unique_ptr<NeighborSearch> search) {
                 p.add(Vec3{(i + 0.5) * 2e-3, (j + 0.5) * 2e-3, (k + 0.5) * 2e-3} +
                           Vec3{rng.uniform(-4e-4, 4e-4), rng.uniform(-4e-4, 4e-4), rng.uniform(-4e-4, 4e-4)},
                       0.08e-3, test::kDensity);
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
+    const ContactParams contact = test::platen_scene_contact();
     World world(std::move(p), contact, SimParams{}, std::move(search));
     BondParams bp;
     bp.effective_modulus = 1.0e9;
     bp.tensile_strength_mean = 1.0e6;
     bp.cohesion_mean = 2.0e6;
     world.install_bonds(bp, 0.3e-3);
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    world.add_wall({"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {}, {}, {}, {}});
-    world.add_wall({"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.5}, {}, {}, {}});
+    test::add_platens(world, 0.5);
     world.run(2000);
     REQUIRE(world.status() == RunStatus::running);
     return world.state_hash();
