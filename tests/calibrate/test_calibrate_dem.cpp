@@ -55,7 +55,7 @@ TEST_CASE("twin experiment, real DEM: modulus and peak within 3 %, parameters wi
     CHECK(r.runs_used <= 16);
 }
 
-TEST_CASE("explicit paste: a tiny paste calibration runs end to end and moves towards the twin's modulus", "[calibrate][paste]") {
+TEST_CASE("explicit paste: a tiny paste calibration runs end to end and recovers the twin's modulus within 10 %", "[calibrate][paste]") {
     // A 1.3 mm paste cube (sand 0.3-0.42 mm, paste 0.12 mm: ≈ 520 particles); synthetic targets
     // from seed 2 at E* = 15 GPa; only E* free, 4 runs on seed 1.
     TempDir dir("cal-paste");
@@ -97,8 +97,11 @@ TEST_CASE("explicit paste: a tiny paste calibration runs end to end and moves to
     CHECK(r.runs_failed == 0);
     CHECK(r.runs_used <= 4);
     const double got = r.stages.at(0).solution.best.at(0);  // E* [GPa]
-    INFO("E* from 11 GPa towards 15 GPa: " << got);
-    CHECK(std::fabs(got - 15.0) < std::fabs(11.0 - 15.0));
+    // Recovered E* within 10 % of the truth (15 GPa): the targets come from another packing
+    // seed (2), so seed-to-seed scatter stays in the answer (about 16.2 GPa here, 8 % high);
+    // the start point (11 GPa) is 27 % off.
+    INFO("E* from 11 GPa, truth 15 GPa, recovered " << got);
+    CHECK(std::fabs(got / 15.0 - 1.0) < 0.10);
 
     // calibrated-pre-blended.toml: the base config at the best point, loadable elsewhere (absolute
     // paths), whose cube test is the calibration's run at the best point, bitwise.

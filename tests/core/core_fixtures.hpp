@@ -1,5 +1,7 @@
 #pragma once
-// Small hand-built particle sets for the core tests.
+// Small hand-built particle sets and the shared "bonded cluster between platens" scene pieces
+// for the core tests.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -57,6 +59,32 @@ inline ContactParams frictionless(double modulus) {
     c.effective_modulus = modulus;
     c.friction = 0.0;
     return c;
+}
+
+// The "bonded cluster between platens" scenes (bond families, energy ledger, flat joints, pair
+// pass, soft bonds, neighbour search, determinism): grains with E* = 1 GPa and the default
+// grain-grain friction 0.5; the cluster, its bonds, the platen speed and friction, and the run
+// length are each scene's own.
+inline ContactParams platen_scene_contact() {
+    ContactParams contact;
+    contact.effective_modulus = 1.0e9;
+    contact.friction = 0.5;
+    return contact;
+}
+
+// The platens of those scenes: a fixed bottom platen 1 mm below
+// the lowest particle centre (normal +z) and a top platen 1 mm above the highest (normal -z)
+// moving down at `top_speed` [m/s]; both with E*_w = 1 GPa and friction `wall_friction`.
+// Added in that order (bottom, top), as every scene's pinned numbers assume.
+inline void add_platens(World& world, double top_speed, double wall_friction = 0.0) {
+    double lo = 1e9, hi = -1e9;
+    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
+    Wall bottom{"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {0, 0, 0}, {}, {}, {}};
+    Wall top{"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -top_speed}, {}, {}, {}};
+    bottom.contact.effective_modulus = top.contact.effective_modulus = 1.0e9;
+    bottom.contact.friction = top.contact.friction = wall_friction;
+    world.add_wall(bottom);
+    world.add_wall(top);
 }
 
 }  // namespace gradem::test

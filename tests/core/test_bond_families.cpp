@@ -30,15 +30,11 @@ template <class Tag, class Install>
 std::uint64_t compress(Tag tag, Install install, std::size_t* bonds = nullptr, int steps = 800) {
     ParticleSet p = jittered_cluster(6, 1.0e-3, 99);
     for (std::size_t i = 0; i < p.size(); ++i) p.family[i] = tag(i);
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
+    const ContactParams contact = platen_scene_contact();
     World world(std::move(p), contact, SimParams{});
     const std::size_t n = install(world);
     if (bonds) *bonds = n;
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    world.add_wall({"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {}, {}, {}, {}});
-    world.add_wall({"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.3}, {}, {}, {}});
+    add_platens(world, 0.3);
     world.run(steps);
     return world.state_hash();
 }

@@ -18,8 +18,7 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
 #else
     (void)threads;
 #endif
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
+    const ContactParams contact = platen_scene_contact();
     World world(jittered_cluster(9, 1.0e-3, 99), contact, sim);
     BondParams bp;
     bp.effective_modulus = 1.0e9;
@@ -36,10 +35,7 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
         bp.friction_angle_deg = 25.0;
     }
     world.install_bonds(bp, 0.5e-3);
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    world.add_wall({"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {}, {}, {}, {}});
-    world.add_wall({"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.3}, {}, {}, {}});
+    add_platens(world, 0.3);
     world.run(3000);
     breaks = world.break_events().size();
     if (model == BondModel::soft_bond) {  // softened bonds count too: they change the state

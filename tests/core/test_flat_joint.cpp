@@ -157,9 +157,7 @@ namespace {
 // Damped, frictional compression of a bonded cluster between platens; returns the ledger's
 // balance error over the boundary work.
 double cluster_balance(double dt_fraction, int steps, std::size_t& breaks, FlatJointParams flat = {1, 3, 0.4}) {
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
-    contact.friction = 0.5;
+    const ContactParams contact = platen_scene_contact();
     World world(jittered_cluster(5, 1.0e-3, 5), contact, SimParams{});
     BondParams bp;
     bp.model = BondModel::flat_joint;
@@ -168,14 +166,7 @@ double cluster_balance(double dt_fraction, int steps, std::size_t& breaks, FlatJ
     bp.cohesion_mean = 4.0e6;
     bp.flat = flat;
     world.install_bonds(bp, 0.5e-3);
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    Wall bottom{"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {0, 0, 0}, {}, {}, {}};
-    Wall top{"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.05}, {}, {}, {}};
-    bottom.contact.effective_modulus = top.contact.effective_modulus = 1.0e9;
-    bottom.contact.friction = top.contact.friction = 0.3;
-    world.add_wall(bottom);
-    world.add_wall(top);
+    add_platens(world, 0.05, 0.3);
     world.set_time_step(dt_fraction * world.critical_time_step());
     world.run(steps);
     const EnergyLedger& e = world.energy();

@@ -158,14 +158,29 @@ TEST_CASE("multi-level grid = brute force at size ratios 1, 10, 50", "[core][nei
             }
 }
 
-TEST_CASE("the automatic search returns the cell grid's pairs at any size ratio", "[core][neighbors]") {
+// Which search "auto" ran is not observable: NeighborSearch exposes only find_pairs() and
+// name() (always "auto"). What is asserted instead: the ratios straddle the documented switch
+// (R_max / R_min <= kMultilevelRadiusRatio: cell grid, above: multi-level grid), so each
+// search is exercised on its side, and at every ratio the automatic search returns exactly
+// the brute-force pairs, which both the cell grid and the multi-level grid also return.
+TEST_CASE("the automatic search returns the brute-force pairs on both sides of its switch", "[core][neighbors]") {
     auto automatic = make_neighbor_search();
     auto cell_grid = make_cell_grid_search();
-    for (const double ratio : {1.0, 3.0, 6.0}) {
-        const Cloud c = cloud(3000, ratio, Sizes::power_law, 12);
-        const double gap = 0.3 * *std::min_element(c.r.begin(), c.r.end());
-        INFO("ratio " << ratio);
-        CHECK(search_with_threads(*automatic, c, gap, 2) == search_with_threads(*cell_grid, c, gap, 2));
+    auto multilevel = make_multilevel_grid_search();
+    CHECK(automatic->name() == "auto");
+    struct Case { double ratio; bool multilevel_side; };
+    for (const Case k : {Case{1.0, false}, Case{2.9, false}, Case{3.5, true}, Case{6.0, true}}) {
+        const Cloud c = cloud(3000, k.ratio, Sizes::power_law, 12);
+        const auto [lo, hi] = std::minmax_element(c.r.begin(), c.r.end());
+        const double gap = 0.3 * *lo;
+        const auto expected = brute_force(c.x, c.r, gap);
+        INFO("ratio " << k.ratio << ", " << expected.size() << " pairs");
+        REQUIRE(expected.size() > 1000);
+        CHECK((*hi > kMultilevelRadiusRatio * *lo) == k.multilevel_side);
+        const auto found = search_with_threads(*automatic, c, gap, 2);
+        CHECK(found == expected);
+        CHECK(search_with_threads(*cell_grid, c, gap, 2) == expected);
+        CHECK(search_with_threads(*multilevel, c, gap, 2) == expected);
     }
 }
 
@@ -231,18 +246,14 @@ std::uint64_t compressed_mix_hash(std::unique_ptr<NeighborSearch> search) {
                 p.add(Vec3{(i + 0.5) * 2e-3, (j + 0.5) * 2e-3, (k + 0.5) * 2e-3} +
                           Vec3{rng.uniform(-4e-4, 4e-4), rng.uniform(-4e-4, 4e-4), rng.uniform(-4e-4, 4e-4)},
                       0.08e-3, test::kDensity);
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
+    const ContactParams contact = test::platen_scene_contact();
     World world(std::move(p), contact, SimParams{}, std::move(search));
     BondParams bp;
     bp.effective_modulus = 1.0e9;
     bp.tensile_strength_mean = 1.0e6;
     bp.cohesion_mean = 2.0e6;
     world.install_bonds(bp, 0.3e-3);
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    world.add_wall({"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {}, {}, {}, {}});
-    world.add_wall({"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.5}, {}, {}, {}});
+    test::add_platens(world, 0.5);
     world.run(2000);
     REQUIRE(world.status() == RunStatus::running);
     return world.state_hash();

@@ -36,15 +36,11 @@ BondParams bond_params() {
 
 // A 12^3 bonded lattice, partly overlapping, squeezed between platens: overlapping contacts, then breaks.
 World squeezed_lattice(const SimParams& sim = SimParams{}) {
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
+    const ContactParams contact = platen_scene_contact();
     World world(jittered_cluster(12, 1.0e-3, 7), contact, sim);
     world.scale_radii(1.06);  // some neighbours overlap: contacts beside bonds
     world.install_bonds(bond_params(), 0.5e-3);
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    world.add_wall({"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {}, {}, {}, {}});
-    world.add_wall({"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.3}, {}, {}, {}});
+    add_platens(world, 0.3);
     return world;
 }
 

@@ -183,9 +183,7 @@ TEST_CASE("soft bond homogeneity: moduli and strengths x2 -> forces x2; strength
 
 TEST_CASE("soft bonds: damped, frictional compression between platens closes the ledger to 1e-3",
           "[core][soft_bond][energy]") {
-    ContactParams contact;
-    contact.effective_modulus = 1.0e9;
-    contact.friction = 0.5;
+    const ContactParams contact = platen_scene_contact();
     World world(jittered_cluster(5, 1.0e-3, 5), contact, SimParams{});
     BondParams bp;
     bp.model = BondModel::soft_bond;
@@ -194,14 +192,7 @@ TEST_CASE("soft bonds: damped, frictional compression between platens closes the
     bp.cohesion_mean = 2.0e6;
     bp.soft = {0.3, 0.1};
     world.install_bonds(bp, 0.5e-3);
-    double lo = 1e9, hi = -1e9;
-    for (const Vec3& x : world.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
-    Wall bottom{"bottom", {0, 0, 1}, {0, 0, lo - 1.0e-3}, {0, 0, 0}, {}, {}, {}};
-    Wall top{"top", {0, 0, -1}, {0, 0, hi + 1.0e-3}, {0, 0, -0.05}, {}, {}, {}};
-    bottom.contact.effective_modulus = top.contact.effective_modulus = 1.0e9;
-    bottom.contact.friction = top.contact.friction = 0.3;
-    world.add_wall(bottom);
-    world.add_wall(top);
+    add_platens(world, 0.05, 0.3);
     world.run(20000);
     const EnergyLedger& e = world.energy();
     REQUIRE(world.status() == RunStatus::running);
