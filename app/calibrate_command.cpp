@@ -1,7 +1,8 @@
-// `gradem calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N]`: calibrates the
+// `gradem calibrate <config.toml> [--out DIR] [--max-runs N] [--workers N] [--plan]`: calibrates the
 // problem of a config (calibrate/README.md) and writes summary.json, summary.md,
 // convergence.csv and curves.csv into its output folder. Milestones and a progress line with
-// an ETA go to stderr; the one-line brief report goes to stdout.
+// an ETA go to stderr; the one-line brief report goes to stdout. --plan prints the cost
+// (calibrate/plan.hpp) and stops.
 // Under an MPI launcher (mpirun -np N gradem calibrate ..., GRADEM_MPI builds) rank 0 runs the
 // calibration and ranks 1..N-1 run the cube tests (calibrate/mpi_executor.hpp); the answer is
 // the same as with threads.
@@ -21,6 +22,7 @@
 #include "app/commands.hpp"
 #include "app/mpi_launch.hpp"
 #include "calibrate/calibration.hpp"
+#include "calibrate/plan.hpp"
 #ifdef GRADEM_HAVE_MPI
 #include "calibrate/mpi_executor.hpp"
 #endif
@@ -37,18 +39,25 @@ using common::clock_text;
 struct CalibrateOptions {
     std::string config, out;
     int max_runs = 0, workers = 0;
+    bool plan = false;
 };
 
 /// The progress line: rewritten in place on a terminal, one line per run otherwise. The ETA
-/// is an upper bound: the budget's remaining runs at the mean run time, `workers` at a time.
-void print_progress(const cal::Progress& p) {
+/// follows the plan's model (calibrate/plan.hpp): the runs still expected on the solver's path
+/// (`expected` fitted runs, then the validation runs) at the mean run time so far, `workers`
+/// at a time; the budget's remaining runs give the upper bound.
+void print_progress(const cal::Progress& p, const cal::ExpectedRuns& expected) {
     std::FILE* notes = console().notes();
     const bool tty = isatty(fileno(notes)) != 0;
+    const int left = std::max(0, std::min(p.max_runs, std::max(expected.fitted, p.runs_used)) - p.runs_used) + expected.validation;
+    const int left_max = p.max_runs - p.runs_used + expected.validation;
+    const double per_run = p.mean_run_s / std::max(1, p.workers);
     // No run timed yet (all from the ledger): no estimate.
-    const double eta = p.mean_run_s > 0.0 ? p.mean_run_s * (p.max_runs - p.runs_used) / std::max(1, p.workers) : std::nan("");
-    std::fprintf(notes, "%scalibrate: runs %d/%d (%d from ledger)  evaluations %d  best objective %.4g  elapsed %s  ETA <= %s%s",
+    const double eta = p.mean_run_s > 0.0 ? per_run * left : std::nan("");
+    const double eta_max = p.mean_run_s > 0.0 ? per_run * left_max : std::nan("");
+    std::fprintf(notes, "%scalibrate: runs %d/%d (%d from ledger)  evaluations %d  best objective %.4g  elapsed %s  ETA %s (<= %s)%s",
                  tty ? "\r" : "", p.runs_used, p.max_runs, p.from_ledger, p.evaluations, p.best_objective,
-                 clock_text(p.elapsed_s).c_str(), clock_text(eta).c_str(), tty ? "   " : "\n");
+                 clock_text(p.elapsed_s).c_str(), clock_text(eta).c_str(), clock_text(eta_max).c_str(), tty ? "   " : "\n");
 }
 
 cal::CalibrationProblem load_problem(const CalibrateOptions& o) {
@@ -66,10 +75,11 @@ int calibrate_and_report(const cal::CalibrationProblem& problem, const cal::Cube
     if (problem.representative)
         std::fprintf(notes, "calibrate: the lab data are REPRESENTATIVE, not measurements (see %s)\n", problem.lab_results.c_str());
     const bool tty = isatty(fileno(notes)) != 0;
+    const cal::ExpectedRuns expected = cal::expected_runs(problem);
     const cal::CalibrationResult result = cal::run_calibration(
         problem, model, executor,
         [tty, notes](const std::string& line) { std::fprintf(notes, "%scalibrate: %s\n", tty ? "\r" : "", line.c_str()); },
-        print_progress);
+        [&expected](const cal::Progress& p) { print_progress(p, expected); });
     if (tty) std::fprintf(notes, "\n");
     cal::write_calibration_outputs(problem, result);
     std::fprintf(con.text(), "%s\n", cal::brief_report(problem, result).c_str());
@@ -83,6 +93,16 @@ int calibrate_and_report(const cal::CalibrationProblem& problem, const cal::Cube
         std::fprintf(stderr, "gradem calibrate: every cube test failed (results in %s)\n", problem.out_dir.c_str());
         return common::exit_run_failed;
     }
+    return common::exit_success;
+}
+
+/// --plan: the cost of the calibration, on stdout (JSON with --json); nothing is run or written.
+int print_plan(const cal::CalibrationProblem& problem) {
+    const Console& con = console();
+    if (!con.json()) std::fprintf(con.notes(), "calibrate: planning (engine timing on the specimens)\n");
+    const cal::CalibrationPlan plan = cal::plan_calibration(problem);
+    if (con.json()) Console::print_json(cal::plan_json(plan));
+    else std::fprintf(con.text(), "%s", cal::plan_text(plan).c_str());
     return common::exit_success;
 }
 
@@ -100,6 +120,9 @@ public:
         app.add_option("--workers", o_.workers, "concurrent cube tests, one thread each, 1 to 64 (overrides run.workers)")
             ->check(CLI::Range(1, 64))
             ->type_name("N");
+        app.add_flag("--plan", o_.plan,
+                     "print the runs, particle-steps and estimated wall time (a few seconds of engine timing on the "
+                     "specimens) and stop; genesis and runs are not started");
     }
     int run() override;
 
@@ -125,6 +148,7 @@ int CalibrateCommand::run() {
     refuse_mpi_launch_without_mpi();
 #endif
     const cal::CalibrationProblem problem = load_problem(o);
+    if (o.plan) return print_plan(problem);
     auto model = cal::make_model(problem);
     inputs_checked();
     cal::ThreadExecutor threads(*model, problem.workers);

@@ -33,8 +33,9 @@ BondFamilyTable family_bonds(const MaterialParams& m) {
     return t;
 }
 
-// Bonded specimen between two frictional platens, lateral faces free.
-World build_specimen(const Packing& k, const MaterialParams& m) {
+}  // namespace
+
+World bonded_cube_specimen(const Packing& k, const MaterialParams& m) {
     const bool paste = !k.family.empty();
     ParticleSet particles;
     for (std::size_t i = 0; i < k.position.size(); ++i) {
@@ -58,6 +59,8 @@ World build_specimen(const Packing& k, const MaterialParams& m) {
     world.add_wall({"top", {0, 0, -1}, {0, 0, k.box_hi.z}, {}, platen, {}, {}});
     return world;
 }
+
+namespace {
 
 // Cycles the released specimen (platens fixed) until the unbalanced-force ratio is small.
 std::int64_t settle(World& world, const CubeTestSpec& spec, double& ratio) {
@@ -98,7 +101,7 @@ World settled_cube_specimen(const Packing& packing, const MaterialParams& materi
     if (auto why = material.invalid_reason()) throw std::invalid_argument(*why);
     if (auto why = spec.invalid_reason()) throw std::invalid_argument(*why);
     if (packing.position.empty()) throw std::invalid_argument("cube test: empty packing");
-    World world = build_specimen(packing, material);
+    World world = bonded_cube_specimen(packing, material);
     r.particles = world.particles().size();
     r.bonds = world.bonds().size();
     if (!packing.family.empty()) count_family_bonds(world, packing, r);

@@ -13,6 +13,10 @@
 
 namespace gradem::exp {
 
+/// The packing bonded with `material` between the two fixed frictional platens, not yet settled
+/// (inputs not validated: settled_cube_specimen does that).
+World bonded_cube_specimen(const Packing& packing, const MaterialParams& material);
+
 /// Validates the inputs, builds and settles the specimen. Fills r.particles, r.bonds,
 /// r.settle_ratio, r.settle_steps and a warning when settling stopped short.
 World settled_cube_specimen(const Packing& packing, const MaterialParams& material, const CubeTestSpec& spec,

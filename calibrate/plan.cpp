@@ -1,0 +1,317 @@
+#include "calibrate/plan.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "calibrate/calibration.hpp"
+#include "calibrate/parameters.hpp"
+#include "common/clock_text.hpp"
+#include "core/world.hpp"
+#include "experiments/cube_specimen.hpp"
+#include "experiments/grain_sampler.hpp"
+#include "experiments/packing_cache.hpp"
+#include "experiments/paste_cache.hpp"
+#include "experiments/quick_packing.hpp"
+#include "experiments/tension_config.hpp"
+
+namespace gradem::cal {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// One specimen set: the fit's (problem.base, problem.seeds) or the validation's.
+struct SpecimenSet {
+    std::string name;
+    exp::CubeConfig base;
+    std::vector<std::uint64_t> seeds;
+};
+
+std::vector<SpecimenSet> specimen_sets(const CalibrationProblem& problem) {
+    std::vector<SpecimenSet> sets{{"fit", problem.base, problem.seeds}};
+    if (problem.validation.enabled()) {
+        const CalibrationProblem v = validation_problem(problem);
+        sets.push_back({"validation", v.base, problem.validation.seeds});
+    }
+    return sets;
+}
+
+/// The cached packing of (curve, spec), if genesis has made it.
+std::optional<exp::Packing> cached_packing(const lab::GradationCurve& curve, const exp::SpecimenSpec& spec,
+                                           const std::filesystem::path& cache_dir) {
+    const std::uint64_t key = exp::packing_key(curve, spec);
+    const std::filesystem::path path =
+        spec.paste ? exp::paste_cache_path(curve, spec, cache_dir) : exp::packing_cache_path(cache_dir, key);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return std::nullopt;
+    return spec.paste ? exp::load_or_generate_paste(curve, spec, cache_dir) : exp::load_packing(path, key);
+}
+
+/// A stand-in specimen for the engine timing when genesis has not run: a quick packing with as
+/// many grains as genesis would sample, over the same radius range.
+exp::Packing quick_stand_in(const exp::GrainSample& grains, double density) {
+    const auto [lo, hi] = std::minmax_element(grains.diameters.begin(), grains.diameters.end());
+    exp::QuickPackingSpec q;
+    q.target_count = static_cast<std::int64_t>(grains.diameters.size());
+    q.max_radius = 0.5 * *hi;
+    q.radius_ratio = std::clamp(*hi / *lo, 1.0, 3.0);
+    q.density = density;
+    const exp::QuickPacking quick = exp::make_quick_packing(q);
+    exp::Packing p;
+    p.density = density;
+    for (std::size_t i = 0; i < quick.particles.size(); ++i) {
+        p.position.push_back(quick.particles.position[i]);
+        p.radius.push_back(quick.particles.radius[i]);
+    }
+    p.box_lo = {0, 0, 0};
+    p.box_hi = {quick.edge, quick.edge, quick.edge};
+    return p;
+}
+
+/// What the engine timing measured on one specimen.
+struct Probe {
+    double seconds_per_particle_step = 0.0, time_step = 0.0, settle_steps = 0.0;
+};
+
+/// Bonds `packing` with `material` between the platens and cycles it, as a run settles it, for
+/// about `seconds` on one thread. Settling steps beyond the probe are extrapolated from the
+/// decay of the unbalanced-force ratio (log-linear in steps), at most the settling budget.
+Probe probe_engine(const exp::Packing& packing, const exp::MaterialParams& material, const exp::CubeTestSpec& test,
+                   double seconds) {
+    omp_set_num_threads(1);
+    World world = exp::bonded_cube_specimen(packing, material);
+    Probe probe;
+    probe.time_step = world.time_step();
+    const auto start = Clock::now();
+    std::int64_t steps = 0;
+    double first_ratio = 0.0, ratio = 1.0;
+    bool settled = false;
+    while (seconds_since(start) < seconds && steps < test.max_settle_steps) {
+        world.run(100);
+        steps += 100;
+        ratio = world.unbalanced_force_ratio();
+        if (steps == 100) first_ratio = ratio;
+        if (ratio < test.settle_ratio) {
+            settled = true;
+            break;
+        }
+    }
+    probe.seconds_per_particle_step = seconds_since(start) / (static_cast<double>(steps) * packing.radius.size());
+    probe.settle_steps = static_cast<double>(steps);
+    if (!settled && steps >= test.max_settle_steps) return probe;
+    if (!settled) {
+        const double decay = (std::log(first_ratio) - std::log(ratio)) / static_cast<double>(steps - 100);
+        const double more = decay > 0.0 ? (std::log(ratio) - std::log(test.settle_ratio)) / decay
+                                        : static_cast<double>(test.max_settle_steps);
+        probe.settle_steps = std::min(static_cast<double>(test.max_settle_steps), steps + more);
+    }
+    return probe;
+}
+
+/// Loading steps of a platen test from 0 to `end_strain` at `rate` [1/s] with time step `dt`;
+/// the half-cosine ramp over the first ramp_strain moves at half the speed on average.
+double loading_steps(double end_strain, double ramp_strain, double rate, double dt) {
+    return (end_strain + 0.5 * std::min(ramp_strain, end_strain)) / (rate * dt);
+}
+
+/// The gauge strain at peak a run of this sand is expected to reach (see plan.hpp, step 4).
+double expected_peak_strain(const CalibrationProblem& problem, const SandTargets& lab) {
+    const double lab_d = lab.modulus.mean * lab.strain.mean / lab.peak.mean;
+    const double d = problem.bond_model() == BondModel::parallel_bond ? kParallelBondShapeIndex : lab_d;
+    return d * lab.peak.mean / lab.modulus.mean;
+}
+
+/// The runs of each sand on a set, from the stand-in's path: the fitted runs spread over the
+/// sands the mode fits (study mode: all but the prediction on `calibrate_on`).
+int fitted_runs_of(const CalibrationProblem& problem, const ExpectedRuns& e, std::size_t sand) {
+    const int sands = static_cast<int>(problem.sands.size());
+    if (problem.mode != Mode::study) return e.fitted / sands;
+    const int prediction = (sands - 1) * static_cast<int>(problem.seeds.size());
+    if (problem.sands[sand] != problem.calibrate_on) return static_cast<int>(problem.seeds.size());
+    return std::max(0, e.fitted - prediction);
+}
+
+RunCostPlan plan_sand(const CalibrationProblem& problem, const SpecimenSet& set, std::size_t s, const ExpectedRuns& e,
+                      const exp::MaterialParams& start, double probe_seconds, std::vector<SpecimenPlan>& specimens) {
+    exp::CubeConfig config = set.base;
+    config.sand = problem.sands[s];
+    config.material = start;
+    const lab::GradationCurve curve = exp::load_gradation(config);
+    RunCostPlan cost{.sand = problem.sands[s], .set = set.name};
+    std::optional<exp::Packing> timed;
+    for (std::uint64_t seed : set.seeds) {
+        exp::SpecimenSpec spec = config.specimen;
+        spec.seed = seed;
+        SpecimenPlan sp{.sand = cost.sand, .set = set.name, .seed = seed};
+        if (auto p = cached_packing(curve, spec, config.cache_dir)) {
+            sp.cached = true;
+            sp.particles = static_cast<std::int64_t>(p->radius.size());
+            if (!timed) timed = std::move(p);
+        } else {
+            const double edge = spec.genesis.edge;
+            const exp::GrainSample grains =
+                exp::sample_grains(curve, spec.size_rule, spec.genesis.target_solid_fraction * edge * edge * edge, seed);
+            sp.particles = static_cast<std::int64_t>(grains.diameters.size());
+            sp.genesis_max_steps = spec.genesis.max_steps;
+            if (!timed && seed == set.seeds.back()) {
+                timed = quick_stand_in(grains, spec.genesis.density);
+                cost.timed_on_packing = false;
+            }
+        }
+        cost.particles += static_cast<double>(sp.particles) / static_cast<double>(set.seeds.size());
+        specimens.push_back(sp);
+    }
+    const Probe probe = probe_engine(*timed, start, config.test, probe_seconds);
+    cost.time_step_s = probe.time_step;
+    cost.seconds_per_particle_step = probe.seconds_per_particle_step;
+    cost.settle_steps = probe.settle_steps;
+    const exp::PlatenTestSpec& l = config.test.loading;
+    const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, start) : l.strain_rate;
+    const double end = kEndOverPeakStrain * expected_peak_strain(problem, problem.targets[s]);
+    cost.compression_steps = probe.settle_steps + loading_steps(end, l.ramp_strain, rate, probe.time_step);
+    const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s)
+                                          : e.validation / static_cast<int>(problem.sands.size());
+    cost.compression_runs = problem.tension.fitted() ? per_set / 2 : per_set;
+    if (problem.tension.fitted()) {
+        const exp::TensionConfig tension = exp::load_tension_config(config);
+        const double expected = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain : exp::expected_tensile_peak_strain(start);
+        const double t_rate = exp::tension_strain_rate(config, tension, *timed);
+        cost.tension_steps = probe.settle_steps + loading_steps(kTensionEndOverExpected * expected, l.ramp_strain, t_rate, probe.time_step);
+        cost.tension_runs = per_set - cost.compression_runs;
+    }
+    return cost;
+}
+
+double genesis_seconds_bound(const CalibrationPlan& plan) {
+    double s = 0.0;
+    for (const SpecimenPlan& sp : plan.specimens) {
+        if (sp.cached) continue;
+        for (const RunCostPlan& r : plan.runs)
+            if (r.sand == sp.sand && r.set == sp.set)
+                s += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
+    }
+    return s / std::max(1, std::min(plan.workers, plan.cores));
+}
+
+}  // namespace
+
+double RunCostPlan::seconds() const {
+    return particles * seconds_per_particle_step * (compression_runs * compression_steps + tension_runs * tension_steps);
+}
+
+ExpectedRuns expected_runs(const CalibrationProblem& problem) {
+    CalibrationProblem dry = problem;
+    dry.model = "analytic";
+    dry.ledger = ":memory:";
+    dry.workers = 1;
+    const auto model = make_model(dry);
+    const CalibrationResult r = run_calibration(dry, *model);
+    return {r.runs_used, static_cast<int>(r.history.size()), r.validation_runs};
+}
+
+CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds) {
+    CalibrationPlan plan;
+    plan.budget = problem.solver.max_runs;
+    plan.tension = problem.tension.fitted();
+    plan.workers = problem.workers;
+    plan.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const ExpectedRuns e = problem.model == "analytic" ? ExpectedRuns{} : expected_runs(problem);
+    plan.expected_runs = e.fitted;
+    plan.expected_evaluations = e.evaluations;
+    plan.validation_runs = e.validation;
+    if (problem.model == "analytic") {
+        plan.assumptions.push_back("model = \"analytic\": the stand-in runs in milliseconds; nothing to estimate");
+        return plan;
+    }
+    const ParameterSpace space(problem.parameters, problem.base.material);
+    const exp::MaterialParams start = space.material(space.start());
+    for (const SpecimenSet& set : specimen_sets(problem))
+        for (std::size_t s = 0; s < problem.sands.size(); ++s)
+            plan.runs.push_back(plan_sand(problem, set, s, e, start, probe_seconds, plan.specimens));
+    double seconds = 0.0;
+    for (const RunCostPlan& r : plan.runs) {
+        seconds += r.seconds();
+        plan.run_particle_steps += r.particles * (r.compression_runs * r.compression_steps + r.tension_runs * r.tension_steps);
+    }
+    plan.run_wall_s = seconds / std::max(1, std::min(plan.workers, plan.cores));
+    plan.genesis_wall_max_s = genesis_seconds_bound(plan);
+    std::ostringstream a;
+    a << "the runs follow the solver's path on the analytic stand-in (" << e.fitted << " of the budget's " << plan.budget
+      << "); a DEM path may stop earlier or use the whole budget";
+    plan.assumptions.push_back(a.str());
+    std::ostringstream end;
+    end << "a compression run ends at " << kEndOverPeakStrain << " x the strain at peak D sigma_lab/E_lab, D = "
+        << (problem.bond_model() == BondModel::parallel_bond ? "1.2 (the parallel bond)" : "the lab's")
+        << "; every run costs per particle-step what the start point costs in the engine timing";
+    plan.assumptions.push_back(end.str());
+    return plan;
+}
+
+std::string plan_text(const CalibrationPlan& plan) {
+    std::ostringstream o;
+    o << "runs: " << plan.expected_runs << " expected of a budget of " << plan.budget << " (" << plan.expected_evaluations
+      << " evaluations" << (plan.tension ? ", each compression run with its tension test" : "") << ")";
+    if (plan.validation_runs) o << ", then " << plan.validation_runs << " validation runs";
+    o << "\n";
+    for (const SpecimenPlan& s : plan.specimens)
+        o << "specimen " << s.sand << " (" << s.set << "), seed " << s.seed << ": " << s.particles << " grains"
+          << (s.cached ? " (cached)" : " (genesis first, at most " + std::to_string(s.genesis_max_steps) + " steps)") << "\n";
+    for (const RunCostPlan& r : plan.runs) {
+        o << "run " << r.sand << " (" << r.set << "): " << r.compression_runs << " compression x "
+          << static_cast<long long>(std::llround(r.compression_steps)) << " steps";
+        if (r.tension_runs) o << ", " << r.tension_runs << " tension x " << static_cast<long long>(std::llround(r.tension_steps)) << " steps";
+        o << "; time step " << r.time_step_s << " s, " << r.seconds_per_particle_step * 1e9 << " ns per particle-step"
+          << (r.timed_on_packing ? "" : " (timed on a quick packing: genesis has not run)") << "\n";
+    }
+    o << "particle-steps: " << plan.run_particle_steps << "\n";
+    o << "estimated wall time: " << common::clock_text(plan.run_wall_s) << " on " << std::min(plan.workers, plan.cores)
+      << " of " << plan.workers << " workers (" << plan.cores << " cores)";
+    if (plan.genesis_wall_max_s > 0.0) o << ", plus genesis at most " << common::clock_text(plan.genesis_wall_max_s);
+    o << "\n";
+    for (const std::string& a : plan.assumptions) o << "assumed: " << a << "\n";
+    return o.str();
+}
+
+std::string plan_json(const CalibrationPlan& plan) {
+    nlohmann::ordered_json j{{"budget", plan.budget},
+                             {"expected_runs", plan.expected_runs},
+                             {"expected_evaluations", plan.expected_evaluations},
+                             {"validation_runs", plan.validation_runs},
+                             {"tension", plan.tension},
+                             {"workers", plan.workers},
+                             {"cores", plan.cores},
+                             {"particle_steps", plan.run_particle_steps},
+                             {"wall_s", plan.run_wall_s},
+                             {"genesis_wall_max_s", plan.genesis_wall_max_s},
+                             {"specimens", nlohmann::ordered_json::array()},
+                             {"runs", nlohmann::ordered_json::array()},
+                             {"assumptions", plan.assumptions}};
+    for (const SpecimenPlan& s : plan.specimens)
+        j["specimens"].push_back({{"sand", s.sand}, {"set", s.set}, {"seed", s.seed}, {"particles", s.particles},
+                                  {"cached", s.cached}, {"genesis_max_steps", s.genesis_max_steps}});
+    for (const RunCostPlan& r : plan.runs)
+        j["runs"].push_back({{"sand", r.sand},
+                             {"set", r.set},
+                             {"particles", r.particles},
+                             {"time_step_s", r.time_step_s},
+                             {"seconds_per_particle_step", r.seconds_per_particle_step},
+                             {"settle_steps", r.settle_steps},
+                             {"compression_runs", r.compression_runs},
+                             {"compression_steps", r.compression_steps},
+                             {"tension_runs", r.tension_runs},
+                             {"tension_steps", r.tension_steps},
+                             {"timed_on_packing", r.timed_on_packing}});
+    return j.dump(2);
+}
+
+}  // namespace gradem::cal

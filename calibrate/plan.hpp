@@ -1,0 +1,88 @@
+#pragma once
+// The cost of a calibration before it runs (`gradem calibrate --plan`, docs/calibration.md
+// "The cost before the run"):
+//   1. runs: the solver's path on the analytic stand-in (the same problem, solver, budget and
+//      validation, in-memory ledger: about a second) gives the number of evaluations and
+//      distinct runs; the budget is their upper bound;
+//   2. specimens: each packing from the cache, or, when genesis has not run yet, the number of
+//      grains genesis would sample (and genesis' step budget as its cost bound);
+//   3. engine timing: the first seed of each sand and specimen set bonded with the start
+//      material and cycled for a few seconds on one thread (what a worker runs): seconds per
+//      particle-step, the time step and the settling steps;
+//   4. steps per run: settling + the platen travel to the end strain at the test's rate over
+//      the time step. Compression ends at kEndOverPeakStrain × the expected strain at peak
+//      D σ_lab/E_lab, with D = kParallelBondShapeIndex for the parallel bond (near-linear to its
+//      peak) and the lab's own D = E ε_peak/σ_peak for the laws made to reach it; direct tension
+//      at kTensionEndOverExpected × its expected peak strain;
+//   5. wall time: Σ particle-steps × seconds per particle-step over min(workers, cores).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "calibrate/problem.hpp"
+
+namespace gradem::cal {
+
+/// End of a compression run (stress down to stop_fraction × peak) over the expected gauge
+/// strain at peak [-]: the platen strain exceeds the gauge's before the peak, and the test runs
+/// on past it. Measured on parallel-bond calibrations of 2.5 mm cubes (docs/calibration.md).
+inline constexpr double kEndOverPeakStrain = 1.45;
+/// D = E ε_peak / σ_peak of parallel-bond cubes (1.1-1.3; the lab's mortar: 1.7-2.1) [-].
+inline constexpr double kParallelBondShapeIndex = 1.2;
+/// End of a direct-tension run over its expected peak strain (experiments/tension_config.hpp:
+/// the measured peak is 0.62 σ̄c/Ē where the rate assumes 0.5 σ̄c/Ē, and the test runs on past it).
+inline constexpr double kTensionEndOverExpected = 1.6;
+
+/// One packing a calibration needs.
+struct SpecimenPlan {
+    std::string sand, set;           ///< set: "fit" or "validation"
+    std::uint64_t seed = 1;
+    std::int64_t particles = 0;      ///< the cached packing's, or genesis' sampled count
+    bool cached = false;             ///< false: genesis runs first
+    std::int64_t genesis_max_steps = 0;  ///< genesis' step budget (0 when cached)
+};
+
+/// The cost of one run of a sand on a specimen set, from the engine timing.
+struct RunCostPlan {
+    std::string sand, set;
+    double particles = 0.0;              ///< mean over the set's seeds
+    double time_step_s = 0.0;            ///< [s]
+    double seconds_per_particle_step = 0.0;  ///< one thread
+    double settle_steps = 0.0;
+    double compression_steps = 0.0;      ///< settling + loading
+    double tension_steps = 0.0;          ///< 0 when no tension test runs
+    int compression_runs = 0, tension_runs = 0;  ///< of this sand and set in the plan
+    bool timed_on_packing = true;        ///< false: timed on a quick packing (genesis not run)
+    [[nodiscard]] double seconds() const;  ///< of all its runs, one thread
+};
+
+struct CalibrationPlan {
+    int budget = 0;                      ///< solver.max_runs
+    int expected_runs = 0;               ///< fitted runs on the stand-in's path (≤ budget)
+    int expected_evaluations = 0;
+    int validation_runs = 0;             ///< apart from the budget
+    bool tension = false;                ///< each compression run has its tension companion
+    int workers = 1, cores = 1;
+    std::vector<SpecimenPlan> specimens;
+    std::vector<RunCostPlan> runs;
+    double run_particle_steps = 0.0;     ///< Σ over the planned runs
+    double run_wall_s = 0.0;             ///< estimated wall time of the runs [s]
+    double genesis_wall_max_s = 0.0;     ///< upper bound of the genesis still to run [s]
+    std::vector<std::string> assumptions;
+};
+
+/// Distinct fitted runs and validation runs of the problem's solver path on the analytic
+/// stand-in (no DEM run; an in-memory ledger): {expected fitted runs, evaluations, validation runs}.
+struct ExpectedRuns {
+    int fitted = 0, evaluations = 0, validation = 0;
+};
+ExpectedRuns expected_runs(const CalibrationProblem& problem);
+
+/// The plan of `problem` (steps 1-5 above). Throws what the run would throw for bad input.
+CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds = 2.0);
+
+/// For people (stdout of --plan) and for programs (--json).
+std::string plan_text(const CalibrationPlan& plan);
+std::string plan_json(const CalibrationPlan& plan);
+
+}  // namespace gradem::cal

@@ -1,0 +1,114 @@
+// The cost before the run (calibrate/plan.hpp): the expected runs are the solver's own path on
+// the analytic stand-in, and a DEM plan's specimens, time step and steps are those of the runs
+// it plans; planning writes nothing.
+#include <catch2/catch.hpp>
+
+#include "calibrate/plan.hpp"
+#include "calibrate_fixture.hpp"
+#include "experiments/cube_test.hpp"
+#include "experiments/packing_cache.hpp"
+
+namespace fs = std::filesystem;
+using namespace gradem;
+using gradem::test::TempDir;
+
+namespace {
+
+const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
+
+/// A ~200-grain cube of the study's dataset (grains 0.4-1.0 mm in a 3 mm cube), loaded fast
+/// (20 /s: ~10 000 steps; quasi-static or not does not matter to what is planned): genesis and a
+/// cube test take a few seconds each.
+fs::path write_tiny_base(const fs::path& dir) {
+    const std::string study = (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string();
+    test::write_text(dir / "base.toml", "[specimen]\ndataset = \"" + study +
+                                            "\"\nsand = \"Van Buren\"\n[size_rule]\nmin_diameter_mm = 0.4\n"
+                                            "max_diameter_mm = 1.0\n[genesis]\nedge_mm = 3.0\ntarget_solid_fraction = 0.55\n"
+                                            "[test]\nstrain_rate_per_s = 20.0\n[output]\ncache_dir = \"cache\"\n");
+    return dir / "base.toml";
+}
+
+}  // namespace
+
+TEST_CASE("plan: the expected runs are the calibration's own on the analytic stand-in, and nothing is written", "[calibrate][plan]") {
+    TempDir dir("cal-plan-analytic");
+    auto truth_model = cal::make_analytic_model(2, 0.001);
+    test::write_text(dir.path / "lab_results.json",
+                     test::synthetic_lab_results(*truth_model, kSands, test::material_at({20.0, 12.0, 1.6, 0.25}), {101, 102, 103})
+                         .dump(1));
+    const fs::path toml = test::write_problem(dir.path, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
+                                              "strain_weight = 1.0\n[solver]\nmax_runs = 40\n[validation]\nseeds = [21, 22]\n"
+                                              "[output]\ndir = \"out\"\n");
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
+    const cal::ExpectedRuns expected = cal::expected_runs(problem);
+    CHECK_FALSE(fs::exists(dir.path / "out"));  // an in-memory ledger: nothing on disk
+    const auto model = cal::make_model(problem);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    CHECK(expected.fitted == r.runs_used);
+    CHECK(expected.evaluations == static_cast<int>(r.history.size()));
+    CHECK(expected.validation == r.validation_runs);
+    CHECK(expected.validation == 2 * 2);  // one stage, two sands, two validation seeds
+    CHECK(expected.fitted > 2 * 3);       // more than the start point
+    CHECK(expected.fitted <= 40);
+}
+
+TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the runs it plans", "[calibrate][plan]") {
+    TempDir dir("cal-plan-dem");
+    const exp::CubeConfig cube = exp::load_cube_config(write_tiny_base(dir.path));
+    auto model = cal::make_dem_model(cube, {"Van Buren"});
+    model->prepare({1, 2}, 2, {});
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, {"Van Buren"}, cube.material, {1, 2}).dump(1));
+    const fs::path toml = dir.path / "problem.toml";
+    test::write_text(toml, "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1, 2]\n"
+                           "[targets]\nlab_results = \"lab_results.json\"\n[solver]\nmax_runs = 8\n"
+                           "[validation]\nseeds = [11]\n[output]\ndir = \"out\"\n");
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
+    const cal::CalibrationPlan plan = cal::plan_calibration(problem, 0.5);
+    CHECK_FALSE(fs::exists(dir.path / "out"));
+
+    // The fit's packings are cached: their own grain counts. The validation seed is not: the
+    // count genesis will sample, and no packing is made for it.
+    REQUIRE(plan.specimens.size() == 3);
+    const lab::GradationCurve curve = exp::load_gradation(cube);
+    for (const cal::SpecimenPlan& s : plan.specimens) {
+        exp::SpecimenSpec spec = cube.specimen;
+        spec.seed = s.seed;
+        const fs::path cached = exp::packing_cache_path(cube.cache_dir, exp::packing_key(curve, spec));
+        INFO(s.set << " seed " << s.seed);
+        CHECK(s.cached == (s.set == "fit"));
+        CHECK(fs::exists(cached) == s.cached);
+        if (s.cached) CHECK(s.particles == static_cast<std::int64_t>(exp::load_packing(cached, exp::packing_key(curve, spec)).radius.size()));
+    }
+    const cal::SpecimenPlan& unseen = plan.specimens.back();
+    const exp::Packing made = exp::load_or_generate(curve, [&] { auto s = cube.specimen; s.seed = unseen.seed; return s; }(), cube.cache_dir);
+    CHECK(std::fabs(static_cast<double>(unseen.particles) / static_cast<double>(made.radius.size()) - 1.0) < 0.10);
+
+    // The run the plan prices: seed 1 at the start material, as the calibration runs it.
+    REQUIRE(plan.runs.size() == 2);
+    const cal::RunCostPlan& fit = plan.runs.front();
+    CHECK(fit.set == "fit");
+    CHECK(fit.timed_on_packing);
+    CHECK(fit.compression_runs + plan.runs.back().compression_runs == plan.expected_runs + plan.validation_runs);
+    exp::CubeTestSpec spec = cube.test;
+    exp::SpecimenSpec seed1 = cube.specimen;
+    seed1.seed = 1;
+    const exp::Packing packing = exp::load_or_generate(curve, seed1, cube.cache_dir);
+    const exp::CubeTestResult run = exp::run_cube_test(packing, cube.material, spec);
+    CHECK(fit.time_step_s == Approx(run.time_step).epsilon(1e-12));
+    const double steps = static_cast<double>(run.test.steps + run.settle_steps);
+    INFO("planned " << fit.compression_steps << " steps, ran " << steps);
+    CHECK(std::fabs(fit.compression_steps / steps - 1.0) < 0.30);
+    CHECK(fit.seconds_per_particle_step > 0.0);
+    CHECK(plan.run_wall_s > 0.0);
+    CHECK(plan.genesis_wall_max_s > 0.0);  // the validation packing still needs genesis
+
+    // What --plan prints: the same numbers for people and for programs.
+    const nlohmann::json j = nlohmann::json::parse(cal::plan_json(plan));
+    CHECK(j["expected_runs"] == plan.expected_runs);
+    CHECK(j["runs"].size() == 2);
+    CHECK(j["specimens"][2]["cached"] == false);
+    CHECK(j["wall_s"].get<double>() == plan.run_wall_s);
+    const std::string text = cal::plan_text(plan);
+    CHECK(text.find("estimated wall time") != std::string::npos);
+    CHECK(text.find("Van Buren (validation), seed 11") != std::string::npos);
+}
