@@ -1,4 +1,4 @@
-// The scaling-law path (docs/calibration.md "The scaling solver") and the solver dispatch.
+// The scaling-law path (docs/calibration.md "The scaling solver"):
 //   1. run the start point x0;
 //   2. rescale E* by α and the strengths by β in closed form (objective.hpp) -> x1, predict
 //      its outputs, run it, and compare: the homogeneity holds if E and peak are predicted
@@ -92,35 +92,125 @@ SolveResult fall_back(SolveContext& ctx, const std::vector<double>& from, BestTr
     return r;
 }
 
-}  // namespace
-
-double BestTracker::offer(const Evaluation& e) {
-    const double j = cal::objective(e, problem_);
-    if (!has_ || j < objective_) {
-        best_ = e;
-        objective_ = j;
-        has_ = true;
+/// Step 2's verdict: the rescaled point's measured E and peak against their prediction.
+HomogeneityCheck check_homogeneity(const SolveContext& ctx, const Rescaling& r1, const Evaluation& e1) {
+    HomogeneityCheck h;
+    h.done = true;
+    h.alpha = r1.scales.alpha;
+    h.beta = r1.scales.beta;
+    if (!e1.failed) {
+        h.modulus_deviation = max_deviation(r1.prediction, e1, Quantity::modulus);
+        h.peak_deviation = max_deviation(r1.prediction, e1, Quantity::peak);
+        h.strain_deviation = max_deviation(r1.prediction, e1, Quantity::strain);
+        if (ctx.problem.tension.fitted()) h.tension_deviation = max_deviation(r1.prediction, e1, Quantity::tension);
+        h.holds = h.modulus_deviation <= ctx.problem.solver.homogeneity_tolerance &&
+                  h.peak_deviation <= ctx.problem.solver.homogeneity_tolerance;
     }
-    return j;
+    return h;
 }
 
-double unit_fd_step(const ParameterSpace& space, std::size_t k, double u, double fd_step) {
-    const ParameterSpec& p = space.free(k);
-    const double h = p.log_scale ? std::log1p(fd_step) / std::log(p.upper / p.lower) : fd_step;
-    return u + h <= 1.0 ? h : -h;
+std::string homogeneity_line(const HomogeneityCheck& h) {
+    return "homogeneity check (moduli x " + std::to_string(h.alpha) + ", strengths x " + std::to_string(h.beta) +
+           "): predicted vs run E " + percent(h.modulus_deviation) + ", peak " + percent(h.peak_deviation) + ", strain " +
+           percent(h.strain_deviation) + (std::isfinite(h.tension_deviation) ? ", tension " + percent(h.tension_deviation) : "") +
+           (h.holds ? " - holds" : " - does not hold");
 }
 
-double noise_floor_objective(const Evaluation& e, const CalibrationProblem& problem) {
-    double j = 0.0;
-    for (const SandOutcome& s : e.sands)
-        for (Quantity q : problem.fitted_quantities()) {
-            const int k = static_cast<int>(q);
-            if (s.count(q) < 2 || !std::isfinite(s.std[k])) continue;
-            const double se = s.std[k] / s.mean[k] / std::sqrt(static_cast<double>(s.count(q)));
-            j += std::pow(problem.weights.of(q) * se, 2);
+/// Step 3: BOBYQA over the shape parameters' unit coordinates, the scales held at x1's; each
+/// trial's objective is the one after its own closed-form rescaling. It keeps back `reserve`
+/// runs of the budget (the confirmation and the uncertainty) and stops when a trial would use them.
+class ShapeSearch {
+public:
+    ShapeSearch(SolveContext& ctx, const ScaleIndices& idx, BestTracker& tracker, const Evaluation& e1, const Rescaling& r_e1,
+                int reserve)
+        : ctx_(ctx), idx_(idx), tracker_(tracker), x1_(e1.values), u1_(ctx.space.to_unit(e1.values)), reserve_(reserve),
+          best_point_(r_e1.point), best_predicted_(r_e1.predicted) {
+        for (std::size_t k : idx.shape) theta1_.push_back(u1_[k]);
+    }
+
+    /// Runs the search with at most `evals` new evaluations and a stop at objective changes
+    /// below `noise`; returns why it stopped.
+    std::string run(int evals, double noise) {
+        const std::size_t n = idx_.shape.size();
+        nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
+        opt.set_lower_bounds(std::vector<double>(n, 0.0));
+        opt.set_upper_bounds(std::vector<double>(n, 1.0));
+        opt.set_initial_step(std::vector<double>(n, 0.2));
+        opt.set_xtol_abs(ctx_.problem.solver.tolerance);
+        opt.set_ftol_abs(std::max(noise, 1e-12));
+        opt.set_maxeval(evals + 1);  // + BOBYQA's first trial, x1 itself: served by the ledger
+        opt_ = &opt;
+        opt.set_min_objective([](unsigned, const double* th, double*, void* self) { return static_cast<ShapeSearch*>(self)->trial(th); },
+                              this);
+        std::vector<double> theta = theta1_;  // optimize() overwrites it
+        double f = 0.0;
+        try {
+            const nlopt::result res = opt.optimize(theta, f);
+            return res == nlopt::MAXEVAL_REACHED ? "shape search used its share of the budget"
+                   : res == nlopt::FTOL_REACHED  ? "shape search: objective change below the noise floor"
+                   : res == nlopt::XTOL_REACHED  ? "shape search: parameter change below solver.tolerance"
+                                                 : "shape search converged";
+        } catch (const nlopt::roundoff_limited&) {
+            return "shape search: round-off limited (flat at the noise level)";
+        } catch (const nlopt::forced_stop&) {
+            return "shape search used its share of the budget";
         }
-    return j;
+    }
+
+    [[nodiscard]] const std::vector<double>& best_point() const { return best_point_; }
+    [[nodiscard]] double best_predicted() const { return best_predicted_; }
+
+private:
+    double trial(const double* th) {
+        std::vector<double> u = u1_;
+        for (std::size_t j = 0; j < idx_.shape.size(); ++j) u[idx_.shape[j]] = th[j];
+        // BOBYQA starts at x1: take its exact values (the unit-box round trip moves the last
+        // bits), so the ledger serves the runs instead of repeating them.
+        const bool at_x1 = std::equal(theta1_.begin(), theta1_.end(), th);
+        const std::vector<double> values = at_x1 ? x1_ : ctx_.space.from_unit(u);
+        if (ctx_.evaluator.runs_needed({values}, ctx_.sands) > ctx_.evaluator.runs_remaining() - reserve_) {
+            opt_->force_stop();  // keep the confirmation's share of the budget
+            return HUGE_VAL;
+        }
+        const Evaluation e = ctx_.evaluator.evaluate(values, ctx_.sands, "shape");
+        tracker_.offer(e);
+        if (e.failed) return objective(e, ctx_.problem);
+        const Rescaling r = rescale(ctx_, idx_, e);
+        if (r.predicted < best_predicted_) {
+            best_predicted_ = r.predicted;
+            best_point_ = r.point;
+        }
+        ctx_.evaluator.note_best(best_predicted_);
+        return r.predicted;
+    }
+
+    SolveContext& ctx_;
+    const ScaleIndices& idx_;
+    BestTracker& tracker_;
+    std::vector<double> x1_, u1_, theta1_;  ///< x1's exact values, unit coordinates, shape coordinates
+    int reserve_;
+    std::vector<double> best_point_;
+    double best_predicted_;
+    nlopt::opt* opt_ = nullptr;
+};
+
+/// Step 4: runs the best point; if E or peak still miss their prediction by more than half the
+/// homogeneity tolerance, rescales and runs once more.
+void confirm(SolveContext& ctx, const ScaleIndices& idx, BestTracker& tracker, std::vector<double> point) {
+    for (int round = 0; round < 2; ++round) {
+        const Evaluation e = ctx.evaluator.evaluate(point, ctx.sands, "confirm");
+        tracker.offer(e);
+        ctx.evaluator.note_best(tracker.objective());
+        if (e.failed) break;
+        const Rescaling r = rescale(ctx, idx, e);
+        const bool on_target = std::fabs(r.scales.alpha - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2 &&
+                               std::fabs(r.scales.beta - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2;
+        if (on_target) break;
+        point = r.point;
+    }
 }
+
+}  // namespace
 
 SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
     const ScaleIndices idx = split(ctx.space);
@@ -129,7 +219,6 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
     head.method = "scaling";
     if (idx.stiffness.empty() && idx.strength.empty()) return fall_back(ctx, start, tracker, head, "no free scale parameter");
     const int per_eval = static_cast<int>(ctx.sands.size() * ctx.problem.seeds.size());
-    auto log = [&](const std::string& s) { if (ctx.log) ctx.log(s); };
     try {
         // 1. The start point.
         const Evaluation e0 = ctx.evaluator.evaluate(start, ctx.sands, "start");
@@ -140,116 +229,27 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
         const Evaluation e1 = ctx.evaluator.evaluate(r1.point, ctx.sands, "rescaled");
         tracker.offer(e1);
         ctx.evaluator.note_best(tracker.objective());
-        HomogeneityCheck& h = head.homogeneity;
-        h.done = true;
-        h.alpha = r1.scales.alpha;
-        h.beta = r1.scales.beta;
-        if (!e1.failed) {
-            h.modulus_deviation = max_deviation(r1.prediction, e1, Quantity::modulus);
-            h.peak_deviation = max_deviation(r1.prediction, e1, Quantity::peak);
-            h.strain_deviation = max_deviation(r1.prediction, e1, Quantity::strain);
-            if (ctx.problem.tension.fitted()) h.tension_deviation = max_deviation(r1.prediction, e1, Quantity::tension);
-            h.holds = h.modulus_deviation <= ctx.problem.solver.homogeneity_tolerance &&
-                      h.peak_deviation <= ctx.problem.solver.homogeneity_tolerance;
-        }
-        log("homogeneity check (moduli x " + std::to_string(h.alpha) + ", strengths x " + std::to_string(h.beta) +
-            "): predicted vs run E " + percent(h.modulus_deviation) + ", peak " + percent(h.peak_deviation) + ", strain " +
-            percent(h.strain_deviation) + (std::isfinite(h.tension_deviation) ? ", tension " + percent(h.tension_deviation) : "") +
-            (h.holds ? " - holds" : " - does not hold"));
-        if (!h.holds)
+        head.homogeneity = check_homogeneity(ctx, r1, e1);
+        if (ctx.log) ctx.log(homogeneity_line(head.homogeneity));
+        if (!head.homogeneity.holds)
             return fall_back(ctx, tracker.best().values, tracker, head,
                              e1.failed ? "the rescaled point failed (" + e1.failure + ")"
                                        : "homogeneity does not hold within " + percent(ctx.problem.solver.homogeneity_tolerance));
-        const double noise = noise_floor_objective(e1, ctx.problem);
-        // 3. Shape search at x1's scales, each trial judged after its closed-form rescaling.
-        const Rescaling r_e1 = rescale(ctx, idx, e1);
-        std::vector<double> best_point = r_e1.point;
-        double best_predicted = r_e1.predicted;
+        // 3. Shape search at x1's scales.
+        ShapeSearch search(ctx, idx, tracker, e1, rescale(ctx, idx, e1), per_eval * (2 + static_cast<int>(idx.shape.size())));
         std::string stop = "no shape parameter is free";
         if (!idx.shape.empty()) {
-            const int reserve = per_eval * (2 + static_cast<int>(idx.shape.size()));  // confirmation(s) + uncertainty
-            const int evals = (ctx.evaluator.runs_remaining() - reserve) / per_eval;
+            const int evals = (ctx.evaluator.runs_remaining() - per_eval * (2 + static_cast<int>(idx.shape.size()))) / per_eval;
             if (evals < static_cast<int>(idx.shape.size()) + 2) {
                 stop = "shape search skipped: too few runs left in the budget";
                 head.notes.push_back(stop);
             } else {
-                const std::size_t n = idx.shape.size();
-                nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
-                opt.set_lower_bounds(std::vector<double>(n, 0.0));
-                opt.set_upper_bounds(std::vector<double>(n, 1.0));
-                opt.set_initial_step(std::vector<double>(n, 0.2));
-                opt.set_xtol_abs(ctx.problem.solver.tolerance);
-                opt.set_ftol_abs(std::max(noise, 1e-12));
-                opt.set_maxeval(evals + 1);  // + BOBYQA's first trial, x1 itself: served by the ledger
-                const std::vector<double> u1 = ctx.space.to_unit(e1.values);
-                std::vector<double> theta;
-                for (std::size_t k : idx.shape) theta.push_back(u1[k]);
-                const std::vector<double> theta1 = theta;  // optimize() overwrites theta
-                struct Data {
-                    SolveContext* ctx;
-                    const ScaleIndices* idx;
-                    const std::vector<double>* u1;
-                    BestTracker* tracker;
-                    std::vector<double>* best_point;
-                    double* best_predicted;
-                    int reserve;
-                    nlopt::opt* opt;
-                    const std::vector<double>* theta1;  ///< x1's shape coordinates (BOBYQA's first trial)
-                    const std::vector<double>* x1;      ///< x1's exact values
-                } data{&ctx, &idx, &u1, &tracker, &best_point, &best_predicted, reserve, &opt, &theta1, &e1.values};
-                opt.set_min_objective(
-                    [](unsigned, const double* th, double*, void* d) -> double {
-                        auto& D = *static_cast<Data*>(d);
-                        std::vector<double> u = *D.u1;
-                        for (std::size_t j = 0; j < D.idx->shape.size(); ++j) u[D.idx->shape[j]] = th[j];
-                        // BOBYQA starts at x1: take its exact values (the unit-box round trip
-                        // moves the last bits), so the ledger serves the runs instead of repeating them.
-                        const bool at_x1 = std::equal(D.theta1->begin(), D.theta1->end(), th);
-                        const std::vector<double> values = at_x1 ? *D.x1 : D.ctx->space.from_unit(u);
-                        if (D.ctx->evaluator.runs_needed({values}, D.ctx->sands) > D.ctx->evaluator.runs_remaining() - D.reserve) {
-                            D.opt->force_stop();  // keep the confirmation's share of the budget
-                            return HUGE_VAL;
-                        }
-                        const Evaluation e = D.ctx->evaluator.evaluate(values, D.ctx->sands, "shape");
-                        D.tracker->offer(e);
-                        if (e.failed) return objective(e, D.ctx->problem);
-                        const Rescaling r = rescale(*D.ctx, *D.idx, e);
-                        if (r.predicted < *D.best_predicted) {
-                            *D.best_predicted = r.predicted;
-                            *D.best_point = r.point;
-                        }
-                        D.ctx->evaluator.note_best(*D.best_predicted);
-                        return r.predicted;
-                    },
-                    &data);
-                double f = 0.0;
-                try {
-                    const nlopt::result res = opt.optimize(theta, f);
-                    stop = res == nlopt::MAXEVAL_REACHED ? "shape search used its share of the budget"
-                           : res == nlopt::FTOL_REACHED  ? "shape search: objective change below the noise floor"
-                           : res == nlopt::XTOL_REACHED  ? "shape search: parameter change below solver.tolerance"
-                                                         : "shape search converged";
-                } catch (const nlopt::roundoff_limited&) {
-                    stop = "shape search: round-off limited (flat at the noise level)";
-                } catch (const nlopt::forced_stop&) {
-                    stop = "shape search used its share of the budget";
-                }
+                stop = search.run(evals, noise_floor_objective(e1, ctx.problem));
             }
         }
-        log(stop + "; best predicted objective " + std::to_string(best_predicted));
+        if (ctx.log) ctx.log(stop + "; best predicted objective " + std::to_string(search.best_predicted()));
         // 4. Confirmation runs.
-        std::vector<double> point = best_point;
-        for (int round = 0; round < 2; ++round) {
-            const Evaluation e = ctx.evaluator.evaluate(point, ctx.sands, "confirm");
-            tracker.offer(e);
-            ctx.evaluator.note_best(tracker.objective());
-            if (e.failed) break;
-            const Rescaling r = rescale(ctx, idx, e);
-            const bool on_target = std::fabs(r.scales.alpha - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2 &&
-                                   std::fabs(r.scales.beta - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2;
-            if (on_target) break;
-            point = r.point;
-        }
+        confirm(ctx, idx, tracker, search.best_point());
         head.stop_reason = stop;
     } catch (const BudgetExhausted& e) {
         head.budget_exhausted = true;
@@ -259,17 +259,6 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
     head.best_eval = tracker.best();
     head.best_objective = tracker.objective();
     return head;
-}
-
-SolveResult solve(SolveContext& ctx, const std::vector<double>& start) {
-    switch (ctx.problem.solver.method) {
-        case Method::scaling: return solve_scaling(ctx, start);
-        case Method::ceres: return solve_ceres(ctx, start);
-        default: {
-            BestTracker tracker(ctx.problem);
-            return solve_nlopt(ctx, ctx.problem.solver.method, start, tracker);
-        }
-    }
 }
 
 }  // namespace gradem::cal
