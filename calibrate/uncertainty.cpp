@@ -127,25 +127,25 @@ std::optional<ReusedPoint> reusable_difference(const SolveContext& ctx, const So
     return chosen;
 }
 
-}  // namespace
+/// Step 1's result: one evaluation per difference column (new runs first, then reused ones).
+struct DifferencePoints {
+    std::vector<std::size_t> columns;  ///< free-parameter index of each difference point
+    std::vector<double> steps;         ///< its step in the unit box
+    std::vector<Evaluation> outputs;
+};
 
-Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
-    Uncertainty u;
+/// Difference points for every column that is not closed-form: from the shape search's history
+/// where the homogeneity allows (scaling path), else new runs. False (with u.note) when they
+/// cannot be had.
+bool difference_points(SolveContext& ctx, const SolveResult& sol, Uncertainty& u, DifferencePoints& d) {
     const ParameterSpace& space = ctx.space;
-    const std::size_t n = space.size();
-    if (sol.best_eval.failed || sol.best.empty()) {
-        u.note = "not computed: the best point has no successful runs";
-        return u;
-    }
     const bool closed_form = sol.homogeneity.holds;
-    // 1. Difference points for every column that is not closed-form: from the shape search's
-    //    history where the homogeneity allows (scaling path), else new runs.
     const std::vector<double> u0 = space.to_unit(sol.best);
-    std::vector<std::size_t> fd_columns, reused_columns;
+    std::vector<std::size_t> reused_columns;
     std::vector<std::vector<double>> points;
-    std::vector<double> steps, reused_steps;
+    std::vector<double> reused_steps;
     std::vector<Evaluation> reused;
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < space.size(); ++k) {
         if (closed_form && space.free(k).role() != Role::shape) continue;
         const double h = unit_fd_step(space, k, u0[k], ctx.problem.solver.fd_step);
         if (closed_form) {
@@ -158,45 +158,56 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
             }
         }
         std::vector<double> uk = u0;
-        steps.push_back(h);
+        d.steps.push_back(h);
         uk[k] += h;
-        fd_columns.push_back(k);
+        d.columns.push_back(k);
         points.push_back(space.from_unit(uk));
     }
-    for (std::size_t c = 0; c < reused_columns.size(); ++c) {  // one list of difference columns
-        fd_columns.push_back(reused_columns[c]);
-        steps.push_back(reused_steps[c]);
-    }
-    std::vector<Evaluation> fd;
+    d.columns.insert(d.columns.end(), reused_columns.begin(), reused_columns.end());  // one list of difference columns
+    d.steps.insert(d.steps.end(), reused_steps.begin(), reused_steps.end());
     if (!points.empty()) {
         const int before = ctx.evaluator.runs_used();
         try {
-            fd = ctx.evaluator.evaluate(points, ctx.sands, "uncertainty");
+            d.outputs = ctx.evaluator.evaluate(points, ctx.sands, "uncertainty");
         } catch (const BudgetExhausted& e) {
             u.note = std::string("not computed: ") + e.what() + " (raise solver.max_runs for standard errors)";
-            return u;
+            return false;
         }
         u.fd_runs = ctx.evaluator.runs_used() - before;
-        for (const Evaluation& e : fd)
+        for (const Evaluation& e : d.outputs)
             if (e.failed) {
                 u.note = "not computed: a difference point failed (" + e.failure + ")";
-                return u;
+                return false;
             }
     }
-    fd.insert(fd.end(), reused.begin(), reused.end());
-    // 2. The Jacobian of the lab-normalised residuals in natural coordinates.
+    d.outputs.insert(d.outputs.end(), reused.begin(), reused.end());
+    return true;
+}
+
+/// Step 2: the Jacobian of the lab-normalised residuals in natural coordinates z, at the best point.
+struct Linearisation {
+    Eigen::MatrixXd jac;         ///< ∂r_i/∂z_k
+    Eigen::VectorXd r0, z0;      ///< residuals and natural coordinates at the best point
+    Eigen::VectorXd unit_scale;  ///< dz/du per free parameter
+};
+
+Linearisation linearise(const SolveContext& ctx, const SolveResult& sol, const DifferencePoints& d) {
+    const ParameterSpace& space = ctx.space;
+    const std::size_t n = space.size();
+    const bool closed_form = sol.homogeneity.holds;
     const Rows rows = rows_of(sol.best_eval, ctx.problem);
     const std::size_t m = rows.sand.size();
-    Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
-    Eigen::VectorXd r0(static_cast<Eigen::Index>(m)), z0(static_cast<Eigen::Index>(n)), unit_scale(static_cast<Eigen::Index>(n));
+    Linearisation l{Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n)),
+                    Eigen::VectorXd(static_cast<Eigen::Index>(m)), Eigen::VectorXd(static_cast<Eigen::Index>(n)),
+                    Eigen::VectorXd(static_cast<Eigen::Index>(n))};
     for (std::size_t k = 0; k < n; ++k) {
         const ParameterSpec& p = space.free(k);
-        z0[k] = space.to_natural(k, sol.best[k]);
-        unit_scale[k] = p.log_scale ? std::log(p.upper / p.lower) : p.upper - p.lower;  // dz/du
+        l.z0[k] = space.to_natural(k, sol.best[k]);
+        l.unit_scale[k] = p.log_scale ? std::log(p.upper / p.lower) : p.upper - p.lower;  // dz/du
     }
     for (std::size_t i = 0; i < m; ++i) {
         const double y = output(sol.best_eval, rows.sand[i], rows.quantity[i]);
-        r0[i] = (y - target_of(ctx.problem.targets[rows.sand[i]], rows.quantity[i]).mean) / rows.scale[i];
+        l.r0[i] = (y - target_of(ctx.problem.targets[rows.sand[i]], rows.quantity[i]).mean) / rows.scale[i];
         for (std::size_t k = 0; k < n; ++k) {
             const Role role = space.free(k).role();
             double dy_dz = 0.0;
@@ -207,32 +218,42 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
                                                                   : (q == Quantity::modulus ? 0.0 : 1.0);
                 dy_dz = dlny * y / (space.free(k).log_scale ? 1.0 : sol.best[k]);
             } else {
-                const auto col = static_cast<std::size_t>(std::find(fd_columns.begin(), fd_columns.end(), k) - fd_columns.begin());
-                const double yk = output(fd[col], rows.sand[i], rows.quantity[i]);
-                dy_dz = (yk - y) / (steps[col] * unit_scale[k]);
+                const auto col = static_cast<std::size_t>(std::find(d.columns.begin(), d.columns.end(), k) - d.columns.begin());
+                const double yk = output(d.outputs[col], rows.sand[i], rows.quantity[i]);
+                dy_dz = (yk - y) / (d.steps[col] * l.unit_scale[k]);
             }
-            jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = dy_dz / rows.scale[i];
+            l.jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = dy_dz / rows.scale[i];
         }
     }
-    // 3. Singular values (unit-box columns; zeros for the directions beyond the number of
-    //    targets) and the covariance.
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac * unit_scale.asDiagonal(), Eigen::ComputeFullV);
+    return l;
+}
+
+/// Step 3: singular values of the unit-box Jacobian (zeros for the directions beyond the
+/// number of targets) into u; returns each parameter's share of the directions the targets do
+/// not see (σ < 1e-3 σmax).
+std::vector<double> blind_shares(const Linearisation& l, Uncertainty& u) {
+    const std::size_t n = static_cast<std::size_t>(l.z0.size());
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(l.jac * l.unit_scale.asDiagonal(), Eigen::ComputeFullV);
     for (Eigen::Index k = 0; k < svd.singularValues().size(); ++k) u.singular_values.push_back(svd.singularValues()[k]);
     u.singular_values.resize(n, 0.0);
     const double smax = u.singular_values.front();
     const double smin = u.singular_values.back();
     u.condition = smin > 0.0 ? smax / smin : HUGE_VAL;
-    // Each parameter's share of the directions the targets do not see (σ < 1e-3 σmax).
     const Eigen::MatrixXd v = svd.matrixV();
-    std::vector<double> blind_share(n, 0.0);
+    std::vector<double> share(n, 0.0);
     for (std::size_t j = 0; j < n; ++j)
         if (!(u.singular_values[j] > 1e-3 * smax))
-            for (std::size_t k = 0; k < n; ++k)
-                blind_share[k] += std::pow(v(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)), 2);
+            for (std::size_t k = 0; k < n; ++k) share[k] += std::pow(v(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)), 2);
+    return share;
+}
 
+/// Step 4: the covariance of z from the linearised least-squares problem (Ceres, dense SVD,
+/// unseen directions dropped); NaNs (and u.note) when Ceres cannot compute it.
+std::vector<double> covariance_of(const Linearisation& l, Uncertainty& u) {
+    const std::size_t n = static_cast<std::size_t>(l.z0.size());
     ceres::Problem problem;
-    std::vector<double> z(z0.data(), z0.data() + n);
-    problem.AddResidualBlock(new Linearised(r0, jac, z0), nullptr, z.data());
+    std::vector<double> z(l.z0.data(), l.z0.data() + n);
+    problem.AddResidualBlock(new Linearised(l.r0, l.jac, l.z0), nullptr, z.data());
     ceres::Covariance::Options options;
     options.algorithm_type = ceres::DENSE_SVD;
     options.null_space_rank = -1;  // drop directions the data do not see instead of failing
@@ -242,22 +263,45 @@ Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
     const std::vector<std::pair<const double*, const double*>> blocks = {{z.data(), z.data()}};
     if (covariance.Compute(blocks, &problem)) covariance.GetCovarianceBlock(z.data(), z.data(), cov.data());
     else u.note = "Ceres could not compute the covariance";
-    // 4. Standard errors, intervals, and the parameters the data cannot pin down.
+    return cov;
+}
+
+/// Step 5: standard errors, intervals, and the parameters the data cannot pin down.
+void standard_errors(const ParameterSpace& space, const Linearisation& l, const std::vector<double>& cov,
+                     const std::vector<double>& blind_share, Uncertainty& u) {
+    const std::size_t n = space.size();
+    const auto m = l.r0.size();
     for (std::size_t k = 0; k < n; ++k) {
         const ParameterSpec& p = space.free(k);
         const bool blind = std::sqrt(blind_share[k]) > 0.5;
         const double se = blind ? HUGE_VAL : std::sqrt(std::max(0.0, cov[k * n + k]));
         u.std_error_natural.push_back(se);
-        u.low.push_back(space.from_natural(k, z0[k] - se));
-        u.high.push_back(space.from_natural(k, z0[k] + se));
+        u.low.push_back(space.from_natural(k, l.z0[k] - se));
+        u.high.push_back(space.from_natural(k, l.z0[k] + se));
         std::ostringstream why;
         if (blind)
             why << "lies in a direction the targets do not see (" << m << " targets for " << n
                 << " free parameters, or collinear columns): its value is set by the start point and the solver's path, not the data";
-        else if (se / unit_scale[k] > 0.25)
-            why << "one standard error spans " << static_cast<int>(std::round(100 * se / unit_scale[k])) << " % of its bounds";
+        else if (se / l.unit_scale[k] > 0.25)
+            why << "one standard error spans " << static_cast<int>(std::round(100 * se / l.unit_scale[k])) << " % of its bounds";
         if (!why.str().empty()) u.poorly_identified.push_back(p.name + ": " + why.str());
     }
+}
+
+}  // namespace
+
+Uncertainty estimate_uncertainty(SolveContext& ctx, const SolveResult& sol) {
+    Uncertainty u;
+    if (sol.best_eval.failed || sol.best.empty()) {
+        u.note = "not computed: the best point has no successful runs";
+        return u;
+    }
+    DifferencePoints d;
+    if (!difference_points(ctx, sol, u, d)) return u;
+    const Linearisation l = linearise(ctx, sol, d);
+    const std::vector<double> blind = blind_shares(l, u);
+    const std::vector<double> cov = covariance_of(l, u);
+    standard_errors(ctx.space, l, cov, blind, u);
     u.computed = true;
     return u;
 }
