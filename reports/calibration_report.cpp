@@ -387,8 +387,11 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"stages", stages}};
 }
 
-std::string summary_markdown(const CalibrationProblem& p, const CalibrationResult& r) {
-    std::ostringstream md;
+namespace {
+
+// --- summary.md, one part per function ----------------------------------------------------
+
+void header_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationResult& r) {
     md << "# gradem calibration: " << p.file.filename().string() << "\n\n";
     if (p.representative)
         md << "> **The lab data are REPRESENTATIVE, not measurements.** " << p.lab_note << "\n\n";
@@ -415,84 +418,124 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
        << ", strain " << p.weights.strain;
     if (p.tension.fitted()) md << ", tension " << p.weights.tension << "\n- direct-tension target: " << tension_target_text(p);
     md << "\n\n";
+}
+
+void homogeneity_markdown(std::ostringstream& md, const SolveResult& s) {
+    if (s.homogeneity.done)
+        md << "Homogeneity check on the actual specimens (moduli × " << fmt(s.homogeneity.alpha) << ", strengths × "
+           << fmt(s.homogeneity.beta) << "): predicted vs run E " << pct(s.homogeneity.modulus_deviation) << ", peak "
+           << pct(s.homogeneity.peak_deviation) << ", strain " << pct(s.homogeneity.strain_deviation)
+           << (std::isfinite(s.homogeneity.tension_deviation) ? ", tension " + pct(s.homogeneity.tension_deviation) : "") << " - "
+           << (s.homogeneity.holds ? "holds" : "does not hold") << ".\n\n";
+}
+
+void parameters_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    const SolveResult& s = st.solution;
+    md << "| parameter | value | ± 1 s.e. | bounds | free |\n|---|---|---|---|---|\n";
+    const ParameterSpace space(p.parameters, p.base.material);
+    for (const ParameterSpec& spec : space.all()) {
+        if (!spec.free) {
+            md << "| " << spec.name << " | " << fmt(spec.start) << " " << spec.unit() << " | | | fixed |\n";
+            continue;
+        }
+        const std::size_t k = *space.index_of(spec.name);
+        const double v = s.best.empty() ? std::nan("") : s.best[k];
+        std::string se = "-";
+        if (st.uncertainty.computed)
+            se = spec.log_scale ? pct(st.uncertainty.std_error_natural[k]).substr(1) : fmt(st.uncertainty.std_error_natural[k], 3);
+        md << "| " << spec.name << " | " << fmt(v) << " " << spec.unit() << " | " << se << " | [" << fmt(spec.lower) << ", "
+           << fmt(spec.upper) << "] " << (spec.log_scale ? "log" : "linear") << " | free |\n";
+    }
+}
+
+void targets_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    md << "\n| sand | target | role | lab mean ± std | simulated mean ± seed spread | rel. error | z |\n"
+          "|---|---|---|---|---|---|---|\n";
+    for (const TargetRow& row : target_rows(p, st))
+        md << "| " << row.sand << " | " << label(row.q) << " [" << unit(row.q) << "] | " << row.role << " | "
+           << fmt(row.lab.mean * display(row.q))
+           << (row.q == Quantity::tension && p.tension.assumed() ? " (assumed: σc,lab/" + fmt(p.tension.ratio, 3) + ")"
+                                                                 : " ± " + fmt(row.lab.std * display(row.q), 2))
+           << " | "
+           << fmt(row.sim_mean * display(row.q)) << " ± " << fmt(row.sim_std * display(row.q), 2) << " | " << pct(row.rel_error)
+           << " | " << fmt(row.z, 2) << " |\n";
+}
+
+void shape_index_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    md << "\n| sand | role | D = E·ε_peak/σ_peak lab | D simulated | rel. error |\n|---|---|---|---|---|\n";
+    for (const ShapeIndexRow& row : shape_index_rows(p, st))
+        md << "| " << row.sand << " | " << row.role << " | " << fmt(row.lab, 3) << " | " << fmt(row.sim, 3) << " | "
+           << pct(row.sim / row.lab - 1.0) << " |\n";
+}
+
+void noise_floor_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    md << "\nNoise floor (relative standard error of the seed mean): modulus " << pct(st.noise_floor[0]).substr(1)
+       << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1);
+    if (p.tension.fitted()) md << ", tension " << pct(st.noise_floor[static_cast<int>(Quantity::tension)]).substr(1);
+    md << ".\n\n";
+}
+
+void tension_ratio_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    if (p.tension.fitted()) {
+        md << "| sand | role | σc/σt simulated | " << (p.tension.assumed() ? "assumed band" : "lab") << " | met |\n|---|---|---|---|---|\n";
+        for (const TargetRow& row : target_rows(p, st))
+            if (row.q == Quantity::tension)
+                md << "| " << row.sand << " | " << row.role << " | " << fmt(row.ratio, 3) << " | "
+                   << (p.tension.assumed() ? fmt(p.tension.ratio_low, 3) + "-" + fmt(p.tension.ratio_high, 3)
+                                           : fmt(lab_ratio(p, row.sand), 3))
+                   << " | " << (row.met ? "yes" : "no") << " |\n";
+        md << "\n";
+    }
+}
+
+void identifiability_markdown(std::ostringstream& md, const CalibrationStage& st) {
+    const Uncertainty& u = st.uncertainty;
+    if (u.computed) {
+        md << "Identifiability: singular values of the lab-normalised Jacobian (unit-box columns) ";
+        for (std::size_t k = 0; k < u.singular_values.size(); ++k) md << (k ? ", " : "") << fmt(u.singular_values[k], 3);
+        md << "; condition number " << (std::isfinite(u.condition) ? fmt(u.condition, 3) : "infinite (rank-deficient)") << ".";
+        if (u.poorly_identified.empty()) md << " Every free parameter is pinned down by the targets.\n\n";
+        else {
+            md << " **The data cannot pin down:**\n\n";
+            for (const auto& w : u.poorly_identified) md << "- " << w << "\n";
+            md << "\n";
+        }
+        for (const auto& r : u.reused) md << "- standard error of " << r << "\n";
+        if (!u.reused.empty()) md << "\n";
+    } else {
+        md << "Uncertainty: " << u.note << "\n\n";
+    }
+}
+
+void unmet_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    const auto unmet = unmet_statements(p, st);
+    const std::string rules = tolerances_text() + (p.tension.fitted() ? "; tension: " + tension_target_text(p) : "");
+    if (unmet.empty()) md << "Every target is met (" << rules << " of the lab mean).\n\n";
+    else {
+        md << "**Targets not met (" << rules << "):**\n\n";
+        for (const auto& w : unmet) md << "- " << w << "\n";
+        md << "\n";
+    }
+}
+
+}  // namespace
+
+std::string summary_markdown(const CalibrationProblem& p, const CalibrationResult& r) {
+    std::ostringstream md;
+    header_markdown(md, p, r);
     for (const CalibrationStage& st : r.stages) {
         const SolveResult& s = st.solution;
         md << "## " << st.label << "\n\n";
         if (p.validation.enabled()) validation_markdown(md, p, st);
         md << "Solver path: " << s.method << "; stop: " << s.stop_reason << "; objective Σr² = " << fmt(s.best_objective) << "\n\n";
-        if (s.homogeneity.done)
-            md << "Homogeneity check on the actual specimens (moduli × " << fmt(s.homogeneity.alpha) << ", strengths × "
-               << fmt(s.homogeneity.beta) << "): predicted vs run E " << pct(s.homogeneity.modulus_deviation) << ", peak "
-               << pct(s.homogeneity.peak_deviation) << ", strain " << pct(s.homogeneity.strain_deviation)
-               << (std::isfinite(s.homogeneity.tension_deviation) ? ", tension " + pct(s.homogeneity.tension_deviation) : "") << " - "
-               << (s.homogeneity.holds ? "holds" : "does not hold") << ".\n\n";
-        md << "| parameter | value | ± 1 s.e. | bounds | free |\n|---|---|---|---|---|\n";
-        const ParameterSpace space(p.parameters, p.base.material);
-        for (const ParameterSpec& spec : space.all()) {
-            if (!spec.free) {
-                md << "| " << spec.name << " | " << fmt(spec.start) << " " << spec.unit() << " | | | fixed |\n";
-                continue;
-            }
-            const std::size_t k = *space.index_of(spec.name);
-            const double v = s.best.empty() ? std::nan("") : s.best[k];
-            std::string se = "-";
-            if (st.uncertainty.computed)
-                se = spec.log_scale ? pct(st.uncertainty.std_error_natural[k]).substr(1) : fmt(st.uncertainty.std_error_natural[k], 3);
-            md << "| " << spec.name << " | " << fmt(v) << " " << spec.unit() << " | " << se << " | [" << fmt(spec.lower) << ", "
-               << fmt(spec.upper) << "] " << (spec.log_scale ? "log" : "linear") << " | free |\n";
-        }
-        md << "\n| sand | target | role | lab mean ± std | simulated mean ± seed spread | rel. error | z |\n"
-              "|---|---|---|---|---|---|---|\n";
-        for (const TargetRow& row : target_rows(p, st))
-            md << "| " << row.sand << " | " << label(row.q) << " [" << unit(row.q) << "] | " << row.role << " | "
-               << fmt(row.lab.mean * display(row.q))
-               << (row.q == Quantity::tension && p.tension.assumed() ? " (assumed: σc,lab/" + fmt(p.tension.ratio, 3) + ")"
-                                                                     : " ± " + fmt(row.lab.std * display(row.q), 2))
-               << " | "
-               << fmt(row.sim_mean * display(row.q)) << " ± " << fmt(row.sim_std * display(row.q), 2) << " | " << pct(row.rel_error)
-               << " | " << fmt(row.z, 2) << " |\n";
-        md << "\n| sand | role | D = E·ε_peak/σ_peak lab | D simulated | rel. error |\n|---|---|---|---|---|\n";
-        for (const ShapeIndexRow& row : shape_index_rows(p, st))
-            md << "| " << row.sand << " | " << row.role << " | " << fmt(row.lab, 3) << " | " << fmt(row.sim, 3) << " | "
-               << pct(row.sim / row.lab - 1.0) << " |\n";
-        md << "\nNoise floor (relative standard error of the seed mean): modulus " << pct(st.noise_floor[0]).substr(1)
-           << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1);
-        if (p.tension.fitted()) md << ", tension " << pct(st.noise_floor[static_cast<int>(Quantity::tension)]).substr(1);
-        md << ".\n\n";
-        if (p.tension.fitted()) {
-            md << "| sand | role | σc/σt simulated | " << (p.tension.assumed() ? "assumed band" : "lab") << " | met |\n|---|---|---|---|---|\n";
-            for (const TargetRow& row : target_rows(p, st))
-                if (row.q == Quantity::tension)
-                    md << "| " << row.sand << " | " << row.role << " | " << fmt(row.ratio, 3) << " | "
-                       << (p.tension.assumed() ? fmt(p.tension.ratio_low, 3) + "-" + fmt(p.tension.ratio_high, 3)
-                                               : fmt(lab_ratio(p, row.sand), 3))
-                       << " | " << (row.met ? "yes" : "no") << " |\n";
-            md << "\n";
-        }
-        const Uncertainty& u = st.uncertainty;
-        if (u.computed) {
-            md << "Identifiability: singular values of the lab-normalised Jacobian (unit-box columns) ";
-            for (std::size_t k = 0; k < u.singular_values.size(); ++k) md << (k ? ", " : "") << fmt(u.singular_values[k], 3);
-            md << "; condition number " << (std::isfinite(u.condition) ? fmt(u.condition, 3) : "infinite (rank-deficient)") << ".";
-            if (u.poorly_identified.empty()) md << " Every free parameter is pinned down by the targets.\n\n";
-            else {
-                md << " **The data cannot pin down:**\n\n";
-                for (const auto& w : u.poorly_identified) md << "- " << w << "\n";
-                md << "\n";
-            }
-            for (const auto& r : u.reused) md << "- standard error of " << r << "\n";
-            if (!u.reused.empty()) md << "\n";
-        } else {
-            md << "Uncertainty: " << u.note << "\n\n";
-        }
-        const auto unmet = unmet_statements(p, st);
-        const std::string rules = tolerances_text() + (p.tension.fitted() ? "; tension: " + tension_target_text(p) : "");
-        if (unmet.empty()) md << "Every target is met (" << rules << " of the lab mean).\n\n";
-        else {
-            md << "**Targets not met (" << rules << "):**\n\n";
-            for (const auto& w : unmet) md << "- " << w << "\n";
-            md << "\n";
-        }
+        homogeneity_markdown(md, s);
+        parameters_markdown(md, p, st);
+        targets_markdown(md, p, st);
+        shape_index_markdown(md, p, st);
+        noise_floor_markdown(md, p, st);
+        tension_ratio_markdown(md, p, st);
+        identifiability_markdown(md, st);
+        unmet_markdown(md, p, st);
         for (const auto& n : s.notes) md << "- note: " << n << "\n";
     }
     return md.str();
