@@ -303,103 +303,141 @@ void MpiExecutor::prepare(const std::vector<std::uint64_t>& seeds, const Log& lo
     }
 }
 
-void MpiExecutor::run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) {
+/// One batch of runs on the worker ranks: every idle worker gets the next request, results
+/// come back in any order, and a worker past its deadline is given up (its run a timeout).
+class MpiExecutor::Batch {
+public:
+    Batch(MpiExecutor& executor, const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done)
+        : x_(executor), requests_(requests), timeout_s_(timeout_s), done_(done),
+          limit_(timeout_s > 0 ? timeout_s + grace_seconds(timeout_s) : 0.0), flights_(executor.workers_.size()) {
+        for (std::size_t k = 0; k < requests.size(); ++k) pending_.push_back(k);
+    }
+
+    void run() {
+        Backoff backoff;
+        while (true) {
+            const auto [in_flight, live] = dispatch();
+            if (in_flight == 0 && (pending_.empty() || error_)) break;
+            if (live == 0)
+                throw ExecutorError("MPI job: every worker rank is lost; " + std::to_string(pending_.size()) +
+                                    " runs of this batch were not run (finished runs are in the ledger)");
+            if (receive()) {
+                backoff.reset();
+                continue;
+            }
+            backoff.wait();
+            expire_overdue();
+        }
+        if (error_) std::rethrow_exception(error_);
+    }
+
+private:
     struct Flight {
         std::size_t index = 0;
         std::uint64_t job = 0;
         Clock::time_point deadline;
     };
-    std::deque<std::size_t> pending;
-    for (std::size_t k = 0; k < requests.size(); ++k) pending.push_back(k);
-    std::vector<std::optional<Flight>> flights(workers_.size());
-    std::exception_ptr error;
-    auto finish = [&](std::size_t index, const RunOutcome& outcome, const RunPlace& place) {
-        if (error) return;
-        try {
-            done(index, outcome, place);
-        } catch (...) {
-            error = std::current_exception();
-        }
-    };
-    // Runs still in flight when rank 0 gives up: their workers may be blocked sending a
-    // result nobody will receive, so the job cannot finalize; it ends with MPI_Abort.
-    auto abandon_flights = [&] {
-        for (const auto& f : flights)
-            if (f) g_rank_lost = true;
-    };
-    const double limit = timeout_s > 0 ? timeout_s + grace_seconds(timeout_s) : 0.0;
-    Backoff backoff;
-    while (true) {
-        // 1. Every idle worker gets the next request.
+
+    /// 1. Every idle worker gets the next request; returns {runs in flight, live workers}.
+    std::pair<std::size_t, std::size_t> dispatch() {
         std::size_t in_flight = 0, live = 0;
-        for (std::size_t w = 0; w < workers_.size(); ++w) {
-            if (workers_[w].lost || workers_[w].stopped) continue;
+        for (std::size_t w = 0; w < x_.workers_.size(); ++w) {
+            if (x_.workers_[w].lost || x_.workers_[w].stopped) continue;
             ++live;
-            if (!flights[w] && !pending.empty() && !error) {
+            if (!flights_[w] && !pending_.empty() && !error_) {
                 wire::Run run;
-                run.job = next_job_++;
+                run.job = x_.next_job_++;
                 run.code_version = code_version();
-                run.model_hash = model_hash_;
-                run.timeout_s = timeout_s;
-                run.request = requests[pending.front()];
-                send(workers_[w].rank, Kind::run, wire::encode(run));
-                flights[w] = Flight{pending.front(), run.job,
-                                    Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit))};
-                pending.pop_front();
+                run.model_hash = x_.model_hash_;
+                run.timeout_s = timeout_s_;
+                run.request = requests_[pending_.front()];
+                send(x_.workers_[w].rank, Kind::run, wire::encode(run));
+                flights_[w] = Flight{pending_.front(), run.job,
+                                     Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_))};
+                pending_.pop_front();
             }
-            if (flights[w]) ++in_flight;
+            if (flights_[w]) ++in_flight;
         }
-        if (in_flight == 0 && (pending.empty() || error)) break;
-        if (live == 0)
-            throw ExecutorError("MPI job: every worker rank is lost; " + std::to_string(pending.size()) +
-                                " runs of this batch were not run (finished runs are in the ledger)");
-        // 2. A result, a refusal, or a short sleep.
-        if (auto m = poll(MPI_ANY_SOURCE)) {
-            backoff.reset();
-            const std::size_t w = static_cast<std::size_t>(m->source - 1);
-            Worker& worker = workers_.at(w);
-            Kind kind;
-            try {
-                kind = wire::kind_of(m->bytes);
-                if (kind == Kind::result) {
-                    wire::Result r = wire::decode_result(m->bytes);
-                    if (flights[w] && flights[w]->job == r.job) {
-                        const std::size_t index = flights[w]->index;
-                        flights[w].reset();
-                        finish(index, r.outcome, {worker.rank, worker.host});
-                    }
-                    continue;
+        return {in_flight, live};
+    }
+
+    /// 2. A result (true), nothing yet (false), or a refusal or bad message: the job stops.
+    bool receive() {
+        const auto m = poll(MPI_ANY_SOURCE);
+        if (!m) return false;
+        const std::size_t w = static_cast<std::size_t>(m->source - 1);
+        const Worker& worker = x_.workers_.at(w);
+        Kind kind;
+        try {
+            kind = wire::kind_of(m->bytes);
+            if (kind == Kind::result) {
+                wire::Result r = wire::decode_result(m->bytes);
+                if (flights_[w] && flights_[w]->job == r.job) {
+                    const std::size_t index = flights_[w]->index;
+                    flights_[w].reset();
+                    finish(index, r.outcome, {worker.rank, worker.host});
                 }
-            } catch (const wire::WireError& e) {
-                abandon_flights();
-                stop_all("rank 0 stopped the job: bad message");
-                throw ExecutorError("MPI job: " + where(worker.rank, worker.host) + " sent a bad message: " + e.what());
+                return true;
             }
+        } catch (const wire::WireError& e) {
             abandon_flights();
-            stop_all("rank 0 stopped the job");
-            throw ExecutorError("MPI job: " + (kind == Kind::stop ? wire::decode_stop(m->bytes).reason
-                                                                   : where(worker.rank, worker.host) + " sent an unexpected '" +
-                                                                         wire::to_string(kind) + "' message"));
+            x_.stop_all("rank 0 stopped the job: bad message");
+            throw ExecutorError("MPI job: " + where(worker.rank, worker.host) + " sent a bad message: " + e.what());
         }
-        backoff.wait();
-        // 3. A worker past its deadline is given up: its run is a timeout, the rank is not used again.
-        if (limit <= 0) continue;
+        abandon_flights();
+        x_.stop_all("rank 0 stopped the job");
+        throw ExecutorError("MPI job: " + (kind == Kind::stop ? wire::decode_stop(m->bytes).reason
+                                                               : where(worker.rank, worker.host) + " sent an unexpected '" +
+                                                                     wire::to_string(kind) + "' message"));
+    }
+
+    /// 3. A worker past its deadline is given up: its run is a timeout, the rank is not used again.
+    void expire_overdue() {
+        if (limit_ <= 0) return;
         const auto now = Clock::now();
-        for (std::size_t w = 0; w < workers_.size(); ++w)
-            if (flights[w] && now > flights[w]->deadline) {
-                Worker& worker = workers_[w];
+        for (std::size_t w = 0; w < x_.workers_.size(); ++w)
+            if (flights_[w] && now > flights_[w]->deadline) {
+                Worker& worker = x_.workers_[w];
                 worker.lost = g_rank_lost = true;
                 RunOutcome o;
                 o.status = RunStatus::timeout;
-                o.reason = where(worker.rank, worker.host) + " sent no result within " + std::to_string(limit) +
+                o.reason = where(worker.rank, worker.host) + " sent no result within " + std::to_string(limit_) +
                            " s (timeout_s + grace); the rank is no longer used";
-                o.wall_seconds = limit;
-                const std::size_t index = flights[w]->index;
-                flights[w].reset();
+                o.wall_seconds = limit_;
+                const std::size_t index = flights_[w]->index;
+                flights_[w].reset();
                 finish(index, o, {worker.rank, worker.host});
             }
     }
-    if (error) std::rethrow_exception(error);
+
+    void finish(std::size_t index, const RunOutcome& outcome, const RunPlace& place) {
+        if (error_) return;
+        try {
+            done_(index, outcome, place);
+        } catch (...) {
+            error_ = std::current_exception();
+        }
+    }
+
+    /// Runs still in flight when rank 0 gives up: their workers may be blocked sending a
+    /// result nobody will receive, so the job cannot finalize; it ends with MPI_Abort.
+    void abandon_flights() const {
+        for (const auto& f : flights_)
+            if (f) g_rank_lost = true;
+    }
+
+    MpiExecutor& x_;
+    const std::vector<RunRequest>& requests_;
+    double timeout_s_;
+    const RunDone& done_;
+    double limit_;
+    std::deque<std::size_t> pending_;
+    std::vector<std::optional<Flight>> flights_;
+    std::exception_ptr error_;
+};
+
+void MpiExecutor::run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) {
+    Batch(*this, requests, timeout_s, done).run();
 }
 
 int MpiExecutor::slots() const {

@@ -99,6 +99,7 @@ private:
         bool lost = false, stopped = false;
     };
     void stop_all(const std::string& reason);
+    class Batch;  ///< one run() call: requests handed out, results collected (mpi_executor.cpp)
 
     CubeModel& model_;
     int threads_;
