@@ -93,6 +93,8 @@ void read_dataset_section(const toml::table& root, DatasetConfig& c, const std::
         g.height_m = get_number(*s, "height_mm", file, g.height_m * 1e3) * 1e-3;
         g.gauge_length_m = get_number(*s, "gauge_length_mm", file, 0.0, false) * 1e-3;
         g.source = "config";
+        for (const char* name : {"width", "depth", "height"})
+            if (s->get(std::string(name) + "_mm")) c.read.nominal_origin[name] = file + " [specimen]";
         c.read.use_file_geometry = get_bool(*s, "use_file_geometry", file, true);
     }
 }
