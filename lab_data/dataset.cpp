@@ -3,6 +3,7 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <toml++/toml.h>
 
@@ -45,6 +46,9 @@ double get_number(const toml::table& t, const char* key, const std::string& file
     const auto v = n->value<double>();
     if (!v || (!n->is_floating_point() && !n->is_integer()))
         throw InputError(file, line_of(*n), std::string("key '") + key + "': expected a number");
+    if (!std::isfinite(*v))
+        throw InputError(file, line_of(*n), std::string("key '") + key + "' = " + (std::isnan(*v) ? "nan" : *v > 0 ? "inf" : "-inf") +
+                                                ": expected a finite number");
     if (positive && !(*v > 0)) throw InputError(file, line_of(*n), std::string("key '") + key + "' must be > 0");
     return *v;
 }
