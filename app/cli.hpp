@@ -6,7 +6,8 @@
 // of common/exit_status.hpp: 1 bad input (common::InputError, std::invalid_argument, or any
 // error before the command said its inputs were checked), 2 bad usage (UsageError, CLI11's parse
 // errors), 3 a failed run (the command's own status, or another error after its inputs were
-// checked, e.g. genesis diverged). The --help text and
+// checked, e.g. genesis diverged). The lab readers' warnings go to the console's notes (stderr,
+// none with --quiet). The --help text and
 // the top-level usage are made here from the command table (app/command_table.hpp) and the
 // declared options, in one style.
 #include <CLI/CLI.hpp>
@@ -24,6 +25,7 @@
 #include "app/console.hpp"
 #include "common/exit_status.hpp"
 #include "common/input_error.hpp"
+#include "lab_data/lab_warning.hpp"
 
 namespace gradem::app {
 
@@ -174,6 +176,12 @@ inline std::string command_synopsis(const CommandInfo& info, Command& command) {
     return synopsis(*app);
 }
 
+/// The lab readers' warnings (rows skipped, nominal specimen dimensions) as notes: one line each
+/// on stderr, none with --quiet; each once per command.
+inline void route_lab_warnings() {
+    lab::warning_sink().start([](const lab::LabWarning& w) { console().notes_stream() << w.line() << '\n'; });
+}
+
 /// Parses `args` (the words after the command's name) into `command` and runs it; prints help
 /// on stdout and every error on stderr ("gradem <name>: ..."); returns the exit status.
 /// Never throws.
@@ -197,6 +205,7 @@ inline int run_command(const CommandInfo& info, Command& command, std::vector<st
             throw UsageError(e.what());
         }
         console().configure(output);
+        route_lab_warnings();
         return command.run();
     } catch (const UsageError& e) {
         std::cerr << who << ": " << e.what() << " (see " << who << " --help)\n";

@@ -181,6 +181,9 @@ public:
       with --test as a tension test: peak load -> ASTM C496 splitting tensile strength
       T = 2P/(pi l d) or ASTM C348 flexural strength Sf = 3PL/(2bd^2), and the fib Model Code
       2010 direct tensile strength (1.0 x T; 0.06h^0.7/(1 + 0.06h^0.7) x Sf, h in mm).
+  warnings (stderr, one line per file and event, none with --quiet; also among the JSON's
+      notes): data rows skipped, with their lines and count, and specimen dimensions a file
+      does not state, with the nominal value used and where it was set.
 )";
     }
 

@@ -2,7 +2,8 @@
 // The command-line reading the bench programs share (gradem-bench, gradem-model-sweep,
 // gradem-mpi-bench): walk argv option by option, take an option's value from the next argument,
 // and read comma lists of numbers, each failure a UsageError naming the option and the text;
-// run_main() gives every program the exit status of gradem (common/exit_status.hpp).
+// run_main() gives every program the exit status of gradem (common/exit_status.hpp), and
+// be_quiet() is every program's --quiet.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -13,6 +14,7 @@
 
 #include "common/exit_status.hpp"
 #include "common/input_error.hpp"
+#include "lab_data/lab_warning.hpp"
 
 namespace gradem::bench {
 
@@ -65,6 +67,36 @@ private:
     int k_ = 0;
     std::string current_;
 };
+
+/// "  --quiet               ..." for a program's --help; `results` says what is still printed.
+inline std::string quiet_help_line(const std::string& results) {
+    return "  --quiet               print nothing but errors" + (results.empty() ? std::string() : " and " + results) + "\n";
+}
+
+namespace detail {
+inline bool& quiet_flag() {
+    static bool quiet = false;
+    return quiet;
+}
+}  // namespace detail
+
+/// True after be_quiet().
+inline bool quiet() { return detail::quiet_flag(); }
+
+/// --quiet: from now on the program prints nothing but errors and, when `results_are_json`, its
+/// JSON results on stdout. The lab readers' warnings (a config's sieve table) and the program's
+/// own (warn()) are dropped; a table for people (stdout, `results_are_json` false) goes to
+/// /dev/null.
+inline void be_quiet(bool results_are_json) {
+    detail::quiet_flag() = true;
+    lab::warning_sink().start({});
+    if (!results_are_json && !std::freopen("/dev/null", "w", stdout)) throw std::runtime_error("--quiet: cannot open /dev/null");
+}
+
+/// "<program>: warning: <text>" on stderr, nothing with --quiet.
+inline void warn(const char* program, const std::string& text) {
+    if (!quiet()) std::fprintf(stderr, "%s: warning: %s\n", program, text.c_str());
+}
 
 /// A program's main: returns what `body` returns; an error is "<program>: what" on stderr and
 /// exit status 2 (UsageError, with a pointer to --help), 1 (common::InputError: a config or

@@ -2,9 +2,10 @@
 // 3, every initial near-contact bonded, ~2.5 bonds per particle) compressed between moving
 // platens. Prints, per size and thread count: N, bonds, steps, wall seconds, particle-steps per
 // second, per-phase times, bytes per particle (World arrays and peak RSS), and the 1 -> 2 thread
-// speed-up. Not a test: numbers depend on the machine; quote medians of several runs.
+// speed-up. Not a test: numbers depend on the machine; quote medians of several runs. --quiet
+// prints nothing but errors and, with --json, the JSON rows.
 //
-//   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json]
+//   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json] [--quiet]
 //                [--models parallel_bond,soft_bond,flat_joint]   (one row set per bond law; the
 //                flat joint with N_r 1, N_α 4, its rows carry the element counts)
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
@@ -43,6 +44,7 @@ struct Options {
     std::int64_t steps = 1000;
     int repeat = 3;
     bool json = false;
+    bool quiet = false;
     std::int64_t neighbors = 0;  ///< > 0: neighbour-search rows for this many particles
     std::vector<std::int64_t> genesis;  ///< genesis rows at these grain counts (then nothing else)
     bool full_cube = false;             ///< the full-size cube's figures (then nothing else)
@@ -52,7 +54,7 @@ struct Options {
 };
 
 constexpr const char* kHelp =
-    "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] [--repeat R] [--json]\n"
+    "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] [--repeat R] [--json] [--quiet]\n"
     "                    [--models parallel_bond,soft_bond,flat_joint]\n"
     "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
     "       gradem-bench --genesis N1,N2,... [--json]\n"
@@ -74,9 +76,7 @@ constexpr const char* kHelp =
     "  --timed N             --full-cube: spheres of the timed packing (default 200000, at least 1000)\n"
     "  --transits X          --full-cube: wave transits to the stop of a test (default 160)\n"
     "  --time-step S         --full-cube: time step of the real specimen [s] (default: the timed one's)\n"
-    "  --json                one JSON object per row instead of the table\n"
-    "  -h, --help            show this text\n"
-    "\n";
+    "  --json                one JSON object per row instead of the table\n";
 
 template <class T>
 std::vector<T> parse_list(const std::string& s, const std::string& option) {
@@ -103,6 +103,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--min-diameter-mm") o.cube.min_diameter = 1e-3 * parse_one<double>(value(), a);
         else if (a == "--repeat") o.repeat = parse_one<int>(value(), a);
         else if (a == "--json") o.json = true;
+        else if (a == "--quiet") o.quiet = true;
         else if (a == "--neighbors") o.neighbors = parse_one<std::int64_t>(value(), a);
         else if (a == "--genesis") o.genesis = parse_list<std::int64_t>(value(), a);
         else if (a == "--models") {
@@ -114,7 +115,8 @@ Options parse(int argc, char** argv) {
             }
         }
         else if (a == "--help" || a == "-h") {
-            std::cout << kHelp << common::exit_status_text("the benchmark run failed");
+            std::cout << kHelp << bench::quiet_help_line("(with --json) the JSON rows") << "  -h, --help            show this text\n\n"
+                      << common::exit_status_text("the benchmark run failed");
             std::exit(common::exit_success);
         } else throw bench::UsageError("unknown option '" + a + "'");
     }
@@ -190,8 +192,7 @@ Sample run_once(const exp::QuickPacking& packing, int threads, std::int64_t step
     s.rss = peak_rss_bytes();
     s.pairs = static_cast<std::int64_t>(world.pair_count());
     s.contacts = static_cast<std::int64_t>(world.active_contact_count());
-    if (world.status() != RunStatus::running)
-        std::cerr << "warning: run diverged: " << world.status_reason() << "\n";
+    if (world.status() != RunStatus::running) bench::warn("gradem-bench", "run diverged: " + world.status_reason());
     return s;
 }
 
@@ -256,6 +257,7 @@ int main(int argc, char** argv) {
     use_sleeping_openmp_threads(argv);
     return bench::run_main("gradem-bench", [&] {
         const Options o = parse(argc, argv);
+        if (o.quiet) bench::be_quiet(o.json);
         if (o.full_cube) {
             bench::FullCubeOptions c = o.cube;
             c.threads = o.threads.back();

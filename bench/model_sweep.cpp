@@ -5,7 +5,7 @@
 // one number a shape parameter must move for the strain at peak to be met.
 //
 //   gradem-model-sweep <cube config.toml> [--model M] [--set key=value]...
-//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension]
+//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension] [--quiet]
 //
 // The base material is the config's [material] with --model and every --set applied (keys and
 // units of the material table, experiments/material_table.hpp; set as the calibration sets them,
@@ -17,7 +17,8 @@
 //    "shape_index_d", "particles", "bonds", "broken", "steps", "wall_s", "particle_steps_per_s",
 //    "status"}; with --tension each point also runs the direct-tension test of the same packing
 // and material (the config's [tension] table) and adds "tensile_mpa", "strength_ratio" (σc/σt),
-// "tension_steps" and "tension_wall_s".
+// "tension_steps" and "tension_wall_s". --quiet: the rows and errors alone (no warnings, e.g.
+// about rows of the config's sieve table).
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -49,11 +50,12 @@ struct Options {
     std::vector<std::string> sands;
     std::vector<std::uint64_t> seeds{1};
     bool tension = false;
+    bool quiet = false;
 };
 
 constexpr const char* kUsage =
     "usage: gradem-model-sweep <config.toml> [--model M] [--set key=value]... [--sweep key=v1,v2,...]...\n"
-    "                          [--sands a,b] [--seeds 1,2] [--tension]\n";
+    "                          [--sands a,b] [--seeds 1,2] [--tension] [--quiet]\n";
 
 using bench::parse_number;
 using bench::split_list;
@@ -81,8 +83,9 @@ Options parse(int argc, char** argv) {
                         "  --sands a,b           sands of the config's dataset (default: the config's sand)\n"
                         "  --seeds 1,2           packing seeds (default 1)\n"
                         "  --tension             also run the direct-tension test of each point\n"
+                        "%s"
                         "  -h, --help            show this text\n\n%s",
-                        kUsage, common::exit_status_text("a cube test run failed").c_str());
+                        kUsage, bench::quiet_help_line("the JSON rows").c_str(), common::exit_status_text("a cube test run failed").c_str());
             std::exit(common::exit_success);
         }
         if (a == "--model") o.model = args.value();
@@ -101,6 +104,7 @@ Options parse(int argc, char** argv) {
         } else if (a == "--sands") o.sands = split_list(args.value());
         else if (a == "--seeds") o.seeds = bench::parse_number_list<std::uint64_t>(args.value(), a);
         else if (a == "--tension") o.tension = true;
+        else if (a == "--quiet") o.quiet = true;
         else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
         else throw bench::UsageError("unknown argument '" + a + "'");
     }
@@ -177,6 +181,7 @@ void run_point(const exp::CubeConfig& base, const exp::MaterialParams& material,
 int main(int argc, char** argv) {
     return bench::run_main("gradem-model-sweep", [&] {
         Options o = parse(argc, argv);
+        if (o.quiet) bench::be_quiet(true);
         const exp::CubeConfig base = exp::load_cube_config(o.config);
         if (o.sands.empty()) o.sands = {base.sand};
         exp::MaterialParams material = base.material;

@@ -1,9 +1,10 @@
 // gradem-mpi-bench: the MPI executor's own cost per run (GRADEM_MPI builds), under
-//   mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P]
+//   mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P] [--quiet]
 // The runs are the analytic stand-in (microseconds each), so the wall time per run is the
 // executor's overhead: encoding, two messages, rank 0's bookkeeping, the polling sleeps.
 // Prints the message sizes, the latency of a lone run (a sequential solver step) and the
-// time per run of full batches (every worker busy). Figures only: nothing is asserted.
+// time per run of full batches (every worker busy). Figures only: nothing is asserted. --quiet
+// prints nothing but errors.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include "calibrate/ledger.hpp"
 #include "calibrate/mpi_executor.hpp"
 #include "calibrate/run_message.hpp"
+#include "bench/bench_args.hpp"
 #include "common/exit_status.hpp"
 #include "common/hash.hpp"
 
@@ -46,7 +48,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 int main(int argc, char** argv) {
     int runs = 2000, points = 200;
-    const std::string usage = "usage: mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P]\n";
+    bool quiet = false;
+    const std::string usage = "usage: mpirun -np N gradem-mpi-bench [--runs R] [--curve-points P] [--quiet]\n";
     for (int k = 1; k < argc; k += 2) {
         const std::string o = argv[k];
         if (o == "--help" || o == "-h") {
@@ -54,9 +57,15 @@ int main(int argc, char** argv) {
                         "options:\n"
                         "  --runs R              runs of the full batch (default 2000)\n"
                         "  --curve-points P      points of each result's curve (default 200)\n"
+                        "%s"
                         "  -h, --help            show this text\n\n%s",
-                        usage.c_str(), common::exit_status_text("the benchmark run failed").c_str());
+                        usage.c_str(), bench::quiet_help_line("").c_str(), common::exit_status_text("the benchmark run failed").c_str());
             return common::exit_success;
+        }
+        if (o == "--quiet") {  // a flag: no value follows
+            quiet = true;
+            --k;
+            continue;
         }
         if (k + 1 >= argc || (o != "--runs" && o != "--curve-points")) {
             std::fprintf(stderr, "gradem-mpi-bench: unknown or incomplete option '%s' (see gradem-mpi-bench --help)\n%s",
@@ -72,6 +81,7 @@ int main(int argc, char** argv) {
         (o == "--runs" ? runs : points) = static_cast<int>(v);
     }
     try {
+        if (quiet) bench::be_quiet(false);
         return cal::mpi::run_job(
             [&](int) { return cal::mpi::JobModel{std::make_unique<CurveModel>(points), 1}; },
             [&](cal::CubeModel& model, cal::mpi::MpiExecutor& executor) {

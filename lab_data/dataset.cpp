@@ -3,6 +3,7 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <toml++/toml.h>
 
@@ -45,6 +46,9 @@ double get_number(const toml::table& t, const char* key, const std::string& file
     const auto v = n->value<double>();
     if (!v || (!n->is_floating_point() && !n->is_integer()))
         throw InputError(file, line_of(*n), std::string("key '") + key + "': expected a number");
+    if (!std::isfinite(*v))
+        throw InputError(file, line_of(*n), std::string("key '") + key + "' = " + (std::isnan(*v) ? "nan" : *v > 0 ? "inf" : "-inf") +
+                                                ": expected a finite number");
     if (positive && !(*v > 0)) throw InputError(file, line_of(*n), std::string("key '") + key + "' must be > 0");
     return *v;
 }
@@ -93,6 +97,8 @@ void read_dataset_section(const toml::table& root, DatasetConfig& c, const std::
         g.height_m = get_number(*s, "height_mm", file, g.height_m * 1e3) * 1e-3;
         g.gauge_length_m = get_number(*s, "gauge_length_mm", file, 0.0, false) * 1e-3;
         g.source = "config";
+        for (const char* name : {"width", "depth", "height"})
+            if (s->get(std::string(name) + "_mm")) c.read.nominal_origin[name] = file + " [specimen]";
         c.read.use_file_geometry = get_bool(*s, "use_file_geometry", file, true);
     }
 }

@@ -65,10 +65,16 @@ void range_checks(SandResult& sand, std::vector<CubeResult>& cubes, std::size_t 
     }
 }
 
+// The sieve table's warnings among the gradation's notes (the JSON's "notes" of a gradation).
+void add_notes(GradationIndices& gradation, const std::vector<LabWarning>& warnings) {
+    for (const LabWarning& w : warnings) gradation.notes.push_back(w.message());
+}
+
 void gradation_of(SandResult& sand, const fs::path& sieve, const C144Limits* limits) {
     if (sieve.empty()) return;
     sand.sieve = read_sieve_csv(sieve);
     sand.gradation = analyse_gradation(sand.sieve->curve);
+    add_notes(*sand.gradation, sand.sieve->warnings);
     if (limits) sand.c144 = check_c144(sand.sieve->curve, *limits);
 }
 
@@ -108,6 +114,8 @@ CubeResult reduce_cube_file(const fs::path& path, const std::string& display_nam
     cube.columns = test.columns;
     cube.representative = test.representative || config.representative;
     cube.notes = test.notes;
+    cube.warnings = test.warnings;
+    report(cube_geometry_warning(test), cube.warnings, cube.notes);
     cube.curve = to_stress_strain(test);
     cube.reduction = reduce_curve(cube.curve, config.reduction);
     const auto& r = cube.reduction;
@@ -238,6 +246,7 @@ LabStats analyse_sieve_files(const std::vector<fs::path>& files, const fs::path&
             SandResult sand;
             sand.name = sand_name_of(analysis, f);
             sand.gradation = analyse_gradation(analysis.curve);
+            add_notes(*sand.gradation, analysis.warnings);
             if (limits) sand.c144 = check_c144(analysis.curve, *limits);
             sand.sieve = std::move(analysis);
             lab.sands.push_back(std::move(sand));

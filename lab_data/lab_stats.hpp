@@ -35,6 +35,7 @@ struct CubeResult {
     double load_rate_n_per_s = 0;                ///< mean between 10 % and 50 % of peak; NaN without time
     std::vector<std::string> flags;              ///< e.g. "c109_range_discarded", "load_rate_outside_c109"
     std::vector<std::string> notes;              ///< what the reader did (sign flips, decoding, ...)
+    std::vector<LabWarning> warnings;            ///< rows skipped, nominal dimensions (also in `notes`)
 };
 
 /// The statistics of one quantity over a sand's cubes (display units are chosen by writers).

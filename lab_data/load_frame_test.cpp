@@ -92,22 +92,39 @@ std::optional<double> meta_length(const RawTable& t, const MetaEntry& m, Quantit
     return *x * u->to_si;
 }
 
-SpecimenGeometry geometry_from(const RawTable& t, const ReadOptions& o, std::vector<std::string>& notes) {
+// The nominal value of a cube dimension the file does not state, with where it was set.
+NominalDimension nominal_dimension(const ReadOptions& o, const char* name, double value_m) {
+    const auto it = o.nominal_origin.find(name);
+    if (it == o.nominal_origin.end()) return {name, value_m, kDefaultCubeOrigin, {}};
+    return {name, value_m, it->second, std::string(name) + "_mm"};
+}
+
+// The file's dimensions where its metadata states them, else the nominal ones (those are listed
+// in test.nominal_dimensions for the warning).
+SpecimenGeometry geometry_from(const RawTable& t, const ReadOptions& o, LoadFrameTest& test) {
     SpecimenGeometry g = o.nominal;
     if (!o.use_file_geometry) return g;
     bool from_file = false;
     auto take = [&](std::initializer_list<const char*> keys, std::initializer_list<const char*> not_keys, double& field, Quantity q) {
-        if (const auto v = metadata_dimension(t, keys, not_keys, q, notes)) { field = *v; from_file = true; }
+        const auto v = metadata_dimension(t, keys, not_keys, q, test.notes);
+        if (v) { field = *v; from_file = true; }
+        return v.has_value();
     };
-    take({"width", "breite"}, {"rate"}, g.width_m, Quantity::length);
-    take({"depth", "thickness", "tiefe", "dicke", "länge", "length"}, {"gauge", "gage", "mess", "extensometer", "rate"}, g.depth_m, Quantity::length);
-    take({"height", "höhe"}, {"rate"}, g.height_m, Quantity::length);
+    const bool width = take({"width", "breite"}, {"rate"}, g.width_m, Quantity::length);
+    const bool depth = take({"depth", "thickness", "tiefe", "dicke", "länge", "length"}, {"gauge", "gage", "mess", "extensometer", "rate"}, g.depth_m, Quantity::length);
+    const bool height = take({"height", "höhe"}, {"rate"}, g.height_m, Quantity::length);
     take({"gauge length", "gage length", "messlänge", "extensometer length"}, {}, g.gauge_length_m, Quantity::length);
     double diameter = 0;
-    take({"diameter", "durchmesser"}, {}, diameter, Quantity::length);
+    const bool round = take({"diameter", "durchmesser"}, {}, diameter, Quantity::length);
     if (diameter > 0) g.area_m2 = std::numbers::pi * diameter * diameter / 4;
-    take({"area", "fläche", "querschnitt"}, {}, g.area_m2, Quantity::area);
+    const bool area = take({"area", "fläche", "querschnitt"}, {}, g.area_m2, Quantity::area) || round;
     if (from_file) g.source = "file";
+    if (!area) {  // a stated area (or diameter) makes width and depth irrelevant
+        if (!width) test.nominal_dimensions.push_back(nominal_dimension(o, "width", g.width_m));
+        if (!depth) test.nominal_dimensions.push_back(nominal_dimension(o, "depth", g.depth_m));
+    }
+    if (!height) test.nominal_dimensions.push_back(nominal_dimension(o, "height", g.height_m));
+    test.no_file_dimensions = !width && !depth && !height && !area;
     return g;
 }
 
@@ -137,7 +154,12 @@ void drop_incomplete_rows(LoadFrameTest& test) {
         for (auto k : keep) out.push_back(v[k]);
         v.swap(out);
     };
-    test.notes.push_back(std::to_string(test.load_n.size() - keep.size()) + " rows without load or strain values skipped");
+    std::vector<int> skipped;
+    for (std::size_t r = 0, k = 0; r < test.load_n.size(); ++r) {
+        if (k < keep.size() && keep[k] == r) ++k;
+        else skipped.push_back(r < test.line.size() ? test.line[r] : 0);
+    }
+    report(rows_skipped(test.file, skipped, "no load or strain value"), test.warnings, test.notes);
     for (auto* v : {&test.load_n, &test.time_s, &test.crosshead_m, &test.strain, &test.lateral_strain}) filter(*v);
     filter(test.line);
 }
@@ -208,7 +230,7 @@ LoadFrameTest interpret_export(const RawTable& t, const ReadOptions& o) {
     if (!roles.column.count(ChannelRole::strain) && !roles.column.count(ChannelRole::crosshead))
         throw InputError(t.file, header_line, "no strain or displacement column: expected an extensometer strain (mm/mm, %, µε) "
                                               "or a crosshead/actuator displacement (mm, in); columns are: " + all);
-    test.geometry = geometry_from(t, o, test.notes);
+    test.geometry = geometry_from(t, o, test);
     if (auto why = test.geometry.invalid_reason()) throw InputError(t.file, 0, *why);
 
     std::map<ChannelRole, std::vector<double>> v;
@@ -259,6 +281,10 @@ LoadFrameTest interpret_export(const RawTable& t, const ReadOptions& o) {
         if (m.value.find("REPRESENTATIVE") != std::string::npos || m.key.find("REPRESENTATIVE") != std::string::npos)
             test.representative = true;
     return test;
+}
+
+LabWarning cube_geometry_warning(const LoadFrameTest& test) {
+    return nominal_geometry(test.file, test.nominal_dimensions, test.no_file_dimensions);
 }
 
 LoadFrameTest read_load_frame_bytes(std::string_view bytes, const std::string& file, const ReadOptions& options) {

@@ -11,6 +11,7 @@
 
 #include "lab_data/curve_reduction.hpp"
 #include "lab_data/export_readers.hpp"
+#include "lab_data/lab_warning.hpp"
 #include "lab_data/raw_table.hpp"
 #include "lab_data/units.hpp"
 
@@ -46,7 +47,13 @@ struct ReadOptions {
     ChannelOverrides channels;
     SpecimenGeometry nominal;       ///< used for whatever the file does not state
     bool use_file_geometry = true;  ///< take dimensions from the file's metadata when present
+    /// Where each nominal dimension was set ("width" -> "lab/dataset.toml [specimen]"), for the
+    /// warning when a file does not state it; a dimension not listed is gradem's default.
+    std::map<std::string, std::string> nominal_origin;
 };
+
+/// The origin of a nominal cube dimension nobody set: the ASTM C109 cube's 50 mm.
+inline constexpr const char* kDefaultCubeOrigin = "gradem's default (the ASTM C109 50 mm cube)";
 
 struct LoadFrameTest {
     std::string file, format, encoding;
@@ -60,7 +67,15 @@ struct LoadFrameTest {
     std::map<std::string, std::string> columns;  ///< role -> "name [unit]" actually used
     bool representative = false;  ///< the file itself says it is REPRESENTATIVE (synthetic), see datasets/study
     std::vector<std::string> notes;
+    std::vector<LabWarning> warnings;  ///< rows skipped (also in `notes` and sent to the warning sink)
+    /// The cube dimensions (width, depth, height) taken from `ReadOptions::nominal` because the
+    /// file does not state them; empty when the file states them all or file geometry is off.
+    std::vector<NominalDimension> nominal_dimensions;
+    bool no_file_dimensions = false;  ///< the file states none of the cube's dimensions
 };
+
+/// The nominal_geometry record of a cube read from `test` (none when it used only file values).
+LabWarning cube_geometry_warning(const LoadFrameTest& test);
 
 /// Maps roles, converts units and signs. Throws InputError (file:line: column 'x': ...).
 LoadFrameTest interpret_export(const RawTable& table, const ReadOptions& options = {});

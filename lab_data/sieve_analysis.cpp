@@ -160,6 +160,8 @@ struct SieveTable {
     std::vector<TableRow> sieves;           // coarsest first
     std::optional<TableRow> pan, total;
     int last_line = 0;                      // last line of the table
+    int end_line = 0;                       // the line that ends the table (0: the file does)
+    std::vector<int> sieve_rows_after;      // lines below the end that name a sieve: not read
 };
 
 std::string cell_text(const std::vector<Cell>& cells, std::size_t k) { return k < cells.size() ? trim(cells[k].text) : ""; }
@@ -309,6 +311,18 @@ SieveHeader locate_header(const Lines& lines, const std::string& file) {
                          " sieve table needs " + accepted_sieve_columns());
 }
 
+// Lines below the end of the table that name a sieve (a row the table's end cut off): they are
+// not read, and the reader warns about them.
+std::vector<int> sieve_rows_after(const SieveHeader& h, const Lines& lines, std::size_t end) {
+    std::vector<int> found;
+    for (std::size_t i = end + 1; i < lines.size(); ++i) {
+        if (is_blank(lines[i])) continue;
+        const RowIdentity r = identify_row(split_cells(lines[i], h.dialect.delimiter).cells, h);
+        if (r.id && r.id->problem.empty() && r.id->kind == SieveRowKind::sieve && r.id->opening_m > 0) found.push_back(static_cast<int>(i) + 1);
+    }
+    return found;
+}
+
 SieveTable read_table(std::string_view bytes, const std::string& file) {
     const std::string text = decode_text(bytes).utf8;
     const Lines lines = split_lines(text);
@@ -325,6 +339,10 @@ SieveTable read_table(std::string_view bytes, const std::string& file) {
         throw InputError(file, second->line(), "a second sieve table starts here (the first has its header at line " +
                                                    std::to_string(t.header.line()) + "): one table per file");
     read_metadata(t, lines, end, lines.size());
+    if (end < lines.size()) {
+        t.end_line = static_cast<int>(end) + 1;
+        t.sieve_rows_after = sieve_rows_after(t.header, lines, end);
+    }
     sort_and_check_sieves(t);
     return t;
 }
@@ -601,6 +619,12 @@ std::vector<SieveAnalysis> parse_sieve_csv_all(std::string_view bytes, const std
     const std::vector<SandColumns> sands = sands_of(t);
     std::vector<SieveAnalysis> all;
     for (const SandColumns& sand : sands) all.push_back(analysis_of(t, sand, sands.size() == 1));
+    const LabWarning skipped = rows_skipped(file, t.sieve_rows_after, "they name a sieve but follow line " + std::to_string(t.end_line) +
+                                                                          ", which ends the table");
+    if (skipped.count() > 0) {
+        warning_sink().add(skipped);
+        for (SieveAnalysis& a : all) a.warnings.push_back(skipped);
+    }
     return all;
 }
 

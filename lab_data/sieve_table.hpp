@@ -6,7 +6,8 @@
 // a sieve column and one or more value columns, delimited by ',', ';' or tab (decimal comma
 // detected as for load-frame exports), with an optional units row below it. Then one row per
 // sieve, in any order, with optional "Pan" and "Total" rows; the table ends at the first row
-// that names no sieve and holds no number (notes below it are read as "key: value" metadata).
+// that names no sieve and holds no number (notes below it are read as "key: value" metadata; a
+// row below it that names a sieve is not read, and is a warning).
 //   sieve columns   Sieve / Sieve No. / Sieve Size (designations), Opening / Particle Size /
 //                   Sieve Size (mm, µm, in; a number without unit is mm)
 //   value columns   percent passing (% Passing, % Finer), cumulative retained (% or mass),
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "lab_data/gradation.hpp"
+#include "lab_data/lab_warning.hpp"
 #include "lab_data/raw_table.hpp"
 
 namespace gradem::lab {
@@ -50,6 +52,7 @@ struct SieveAnalysis {
     std::string sand;               ///< from the column headers, else a "sand"/"sample"/"material" line; may be empty
     std::vector<std::string> columns;  ///< headers of the value columns read for this sand
     int header_line = 0;
+    std::vector<LabWarning> warnings;  ///< rows naming a sieve below the end of the table (not read)
 };
 
 /// Every sand of the file, in the order of their columns. Throws InputError (file:line: ...)

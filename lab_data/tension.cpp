@@ -49,6 +49,14 @@ void add_source(std::string& sources, const std::string& s) {
                      spec.label + ": " + t.file + ": " + what + "; set " + d.config_key + " (mm)");
 }
 
+// Where a dimension the file does not state comes from: the dataset's group, the command line,
+// or ASTM C348.
+NominalDimension nominal_of(const Dimension& d, double value_m, const TensileSpec& spec, bool standard) {
+    if (standard) return {d.what, value_m, "ASTM C348 (the 40 x 40 mm prism on a 120 mm span)", {}};
+    if (spec.config_file.empty()) return {d.what, value_m, "the command line", d.option};
+    return {d.what, value_m, spec.config_file.string() + " " + spec.label, d.config_key};
+}
+
 std::string mm(double m) {
     std::ostringstream os;
     os << m * 1e3;
@@ -120,7 +128,8 @@ TensileGeometry tensile_geometry(const RawTable& t, const TensileSpec& spec, std
                 add_source(g.source, "file");
                 continue;
             }
-        if (spec.nominal.*(d->field) > 0) {
+        const bool standard = !(spec.nominal.*(d->field) > 0);
+        if (!standard) {
             value = spec.nominal.*(d->field);
             add_source(g.source, spec.nominal_source);
         } else if (d->standard > 0) {
@@ -129,6 +138,7 @@ TensileGeometry tensile_geometry(const RawTable& t, const TensileSpec& spec, std
         } else {
             missing_dimension(*d, t, spec, spec.test);
         }
+        if (spec.use_file_geometry) g.nominal_dimensions.push_back(nominal_of(*d, value, spec, standard));
     }
     return g;
 }
@@ -142,6 +152,7 @@ TensileResult reduce_tensile_test(const LoadFrameTest& test, const TensileGeomet
     r.columns = test.columns;
     r.representative = test.representative;
     r.notes = test.notes;
+    r.warnings = test.warnings;
     // The largest load sample (the specimen breaks at it; no smoothing, as for C109 cubes).
     const auto peak = std::max_element(test.load_n.begin(), test.load_n.end());
     if (peak == test.load_n.end() || !(*peak > 0))
@@ -168,6 +179,8 @@ TensileResult read_tensile_bytes(std::string_view bytes, const std::string& file
     const TensileGeometry g = tensile_geometry(table, spec, notes);
     TensileResult r = reduce_tensile_test(test, g, spec.test);
     r.notes.insert(r.notes.end(), notes.begin(), notes.end());
+    const bool nothing_from_file = g.source.find("file") == std::string::npos;
+    report(nominal_geometry(file, g.nominal_dimensions, nothing_from_file), r.warnings, r.notes);
     return r;
 }
 

@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lab_data/lab_warning.hpp"
 #include "lab_data/load_frame_test.hpp"
 #include "lab_data/raw_table.hpp"
 
@@ -50,6 +51,8 @@ struct TensileGeometry {
     double diameter_m = 0, length_m = 0;          ///< splitting: cylinder diameter d and length l
     double width_m = 0, depth_m = 0, span_m = 0;  ///< flexural: prism width b, depth d (load direction), support span L
     std::string source;                           ///< "file", "dataset", "command line", "ASTM C348", joined by '+'
+    /// The dimensions not taken from the file (with file geometry allowed), for the warning.
+    std::vector<NominalDimension> nominal_dimensions;
 };
 
 /// T = 2P/(π l d) [Pa] (ASTM C496).
@@ -95,11 +98,14 @@ struct TensileResult {
     double direct_equivalent_pa = 0;  ///< direct_factor × strength_pa
     std::vector<std::string> flags;   ///< e.g. "peak_at_last_sample"
     std::vector<std::string> notes;   ///< what the reader did
+    std::vector<LabWarning> warnings; ///< rows skipped, nominal dimensions (also in `notes`)
 };
 
 /// The specimen's dimensions: the export's metadata (diameter/length, or width/depth/span) where
 /// stated and allowed, else the spec's nominal values, else (flexural) ASTM C348's. InputError
-/// naming the dataset line and key (or the command-line option) when one stays unknown.
+/// naming the dataset line and key (or the command-line option) when one stays unknown. With
+/// file geometry allowed, the dimensions the file does not state are listed in
+/// `nominal_dimensions`, each with where its value was set.
 TensileGeometry tensile_geometry(const RawTable& table, const TensileSpec& spec, std::vector<std::string>& notes);
 
 /// Peak load of an interpreted export → strength and direct equivalent.

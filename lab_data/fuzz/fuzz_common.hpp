@@ -8,9 +8,13 @@
 
 #include "common/input_error.hpp"
 #include "lab_data/curve_reduction.hpp"
+#include "lab_data/lab_warning.hpp"
 #include "lab_data/load_frame_test.hpp"
 
 namespace gradem::lab::fuzz {
+
+/// The readers' warnings (rows skipped, nominal dimensions) are dropped, not printed per input.
+inline const bool kWarningsDropped = (warning_sink().start({}), true);
 
 inline void exercise_export(const std::uint8_t* data, std::size_t size, ExportFormat format) {
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);

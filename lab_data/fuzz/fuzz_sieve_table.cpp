@@ -8,6 +8,7 @@
 
 #include "common/input_error.hpp"
 #include "lab_data/c144.hpp"
+#include "lab_data/fuzz/fuzz_common.hpp"
 #include "lab_data/sieve_table.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
