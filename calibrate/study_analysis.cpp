@@ -217,6 +217,55 @@ std::vector<RunCost> calibration_run_costs(const CalibratedPoint& cp, const json
 
 std::string pct_text(double v) { return std::isfinite(v) ? fmt_num(100 * v, 3) + " %" : "-"; }
 
+/// What a model's sands add up to: its worst target error, whether every target is met, and
+/// its σc/σt per sand as text.
+struct ModelTally {
+    double worst = 0.0;
+    bool every_met = true;
+    std::string ratio_text;
+};
+
+/// Sand s of a calibrated model: its table row and JSON entry (errors, D, σt and σc/σt, cost).
+void add_model_sand(const CalibratedPoint& cp, const json& j, std::size_t s, const StudyCase& tension,
+                    const std::vector<RunCost>& costs, StudyTable& table, json& model, ModelTally& tally) {
+    const std::filesystem::path& file = cp.summary;
+    const std::string& sand = cp.problem.sands[s];
+    double err[3] = {NAN, NAN, NAN}, sim[3] = {NAN, NAN, NAN}, lab[3] = {NAN, NAN, NAN};
+    for (const json& r : j.at("targets")) {
+        if (r.value("sand", "") != sand) continue;
+        for (Quantity q : kQuantities)
+            if (r.value("quantity", "") == to_string(q)) {
+                const int k = static_cast<int>(q);
+                err[k] = common::number_or_nan(r, "rel_error");
+                sim[k] = common::number_or_nan(r, "sim_mean");
+                lab[k] = common::number_or_nan(r, "lab_mean");
+            }
+    }
+    const double d_sim = sim[0] * sim[2] / sim[1], d_lab = lab[0] * lab[2] / lab[1];
+    int met = 0;
+    for (Quantity q : kQuantities) met += target_met(q, err[static_cast<int>(q)]) ? 1 : 0;
+    tally.every_met = tally.every_met && met == 3;
+    for (double e : err) tally.worst = std::max(tally.worst, std::isfinite(e) ? std::fabs(e) : 1e300);
+    const Sample sigma_t = tension.sample(s, Quantity::peak);             // [Pa]
+    const double ratio = compressive_to_tensile_ratio(sim[1] * 1e6, sigma_t);  // summary peaks are in MPa
+    const RunCostSummary cost = summarise_costs(costs, sand);
+    tally.ratio_text += (tally.ratio_text.empty() ? "" : ", ") + sand + " " + fmt_num(ratio, 3);
+    table.rows.push_back({{cp.bond_model, file.parent_path().filename().string(), std::to_string(j.value("dem_test_runs", 0)),
+                       fmt_num(j.value("wall_seconds", 0.0), 4), sand, pct_text(err[0]), pct_text(err[1]), pct_text(err[2]),
+                       std::to_string(met) + " of 3", fmt_num(d_sim, 3), fmt_num(d_lab, 3),
+                       mean_pm(sigma_t.mean * 1e-6, sigma_t.std * 1e-6, 3) + " (n " + std::to_string(sigma_t.n) + ")",
+                       fmt_num(ratio, 3), fmt_num(cost.mean_wall_seconds, 3), fmt_num(cost.particle_steps_per_second, 3)}});
+    model["sands"].push_back({{"sand", sand}, {"modulus_error", number(err[0])}, {"peak_error", number(err[1])},
+                          {"strain_error", number(err[2])}, {"targets_met", met},
+                          {"shape_index_sim", number(d_sim)}, {"shape_index_lab", number(d_lab)},
+                          {"peak_compression_mpa", number(sim[1])},
+                          {"tensile_strength_mpa", {{"mean", number(sigma_t.mean * 1e-6)}, {"std", number(sigma_t.std * 1e-6)},
+                                                    {"n", sigma_t.n}, {"failed", static_cast<int>(tension.runs[s].size()) - sigma_t.n}}},
+                          {"compressive_to_tensile_ratio", number(ratio)},
+                          {"cost", {{"runs", cost.runs}, {"wall_seconds_per_run", number(cost.mean_wall_seconds)},
+                                    {"particle_steps_per_second", number(cost.particle_steps_per_second)}}}});
+}
+
 }  // namespace
 
 // model_form: the calibrations of several bond models (or representations) side by side: per
@@ -250,46 +299,11 @@ void run_model_form(const std::vector<CalibratedPoint>& calibrations, StudyRunne
         if (!cost_note.empty()) result.verdict.push_back("cost per cube test of " + name + " unknown: " + cost_note);
         json m = {{"model", cp.bond_model}, {"summary", file.string()}, {"runs", j.value("dem_test_runs", 0)},
                   {"wall_seconds", j.value("wall_seconds", 0.0)}, {"seeds", cp.problem.seeds}, {"sands", json::array()}};
-        double worst = 0.0;
-        bool every_met = true;
-        std::string ratio_text;
-        for (std::size_t s = 0; s < cp.problem.sands.size(); ++s) {
-            const std::string& sand = cp.problem.sands[s];
-            double err[3] = {NAN, NAN, NAN}, sim[3] = {NAN, NAN, NAN}, lab[3] = {NAN, NAN, NAN};
-            for (const json& r : j.at("targets")) {
-                if (r.value("sand", "") != sand) continue;
-                for (Quantity q : kQuantities)
-                    if (r.value("quantity", "") == to_string(q)) {
-                        const int k = static_cast<int>(q);
-                        err[k] = common::number_or_nan(r, "rel_error");
-                        sim[k] = common::number_or_nan(r, "sim_mean");
-                        lab[k] = common::number_or_nan(r, "lab_mean");
-                    }
-            }
-            const double d_sim = sim[0] * sim[2] / sim[1], d_lab = lab[0] * lab[2] / lab[1];
-            int met = 0;
-            for (Quantity q : kQuantities) met += target_met(q, err[static_cast<int>(q)]) ? 1 : 0;
-            every_met = every_met && met == 3;
-            for (double e : err) worst = std::max(worst, std::isfinite(e) ? std::fabs(e) : 1e300);
-            const Sample sigma_t = tension.sample(s, Quantity::peak);             // [Pa]
-            const double ratio = compressive_to_tensile_ratio(sim[1] * 1e6, sigma_t);  // summary peaks are in MPa
-            const RunCostSummary cost = summarise_costs(costs, sand);
-            ratio_text += (ratio_text.empty() ? "" : ", ") + sand + " " + fmt_num(ratio, 3);
-            t.rows.push_back({{cp.bond_model, file.parent_path().filename().string(), std::to_string(j.value("dem_test_runs", 0)),
-                               fmt_num(j.value("wall_seconds", 0.0), 4), sand, pct_text(err[0]), pct_text(err[1]), pct_text(err[2]),
-                               std::to_string(met) + " of 3", fmt_num(d_sim, 3), fmt_num(d_lab, 3),
-                               mean_pm(sigma_t.mean * 1e-6, sigma_t.std * 1e-6, 3) + " (n " + std::to_string(sigma_t.n) + ")",
-                               fmt_num(ratio, 3), fmt_num(cost.mean_wall_seconds, 3), fmt_num(cost.particle_steps_per_second, 3)}});
-            m["sands"].push_back({{"sand", sand}, {"modulus_error", number(err[0])}, {"peak_error", number(err[1])},
-                                  {"strain_error", number(err[2])}, {"targets_met", met},
-                                  {"shape_index_sim", number(d_sim)}, {"shape_index_lab", number(d_lab)},
-                                  {"peak_compression_mpa", number(sim[1])},
-                                  {"tensile_strength_mpa", {{"mean", number(sigma_t.mean * 1e-6)}, {"std", number(sigma_t.std * 1e-6)},
-                                                            {"n", sigma_t.n}, {"failed", static_cast<int>(tension.runs[s].size()) - sigma_t.n}}},
-                                  {"compressive_to_tensile_ratio", number(ratio)},
-                                  {"cost", {{"runs", cost.runs}, {"wall_seconds_per_run", number(cost.mean_wall_seconds)},
-                                            {"particle_steps_per_second", number(cost.particle_steps_per_second)}}}});
-        }
+        ModelTally tally;
+        for (std::size_t s = 0; s < cp.problem.sands.size(); ++s) add_model_sand(cp, j, s, tension, costs, t, m, tally);
+        const double worst = tally.worst;
+        const bool every_met = tally.every_met;
+        const std::string& ratio_text = tally.ratio_text;
         m["worst_error"] = number(worst);
         m["all_targets_met"] = every_met;
         models.push_back(m);
