@@ -6,8 +6,9 @@
 // prints nothing but errors and, with --json, the JSON rows.
 //
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json] [--quiet]
-//                [--models parallel_bond,soft_bond,flat_joint]   (one row set per bond law; the
-//                flat joint with N_r 1, N_α 4, its rows carry the element counts)
+//                [--models M1,M2,...]   (one row set per bond law of core/bond_models.hpp, each with
+//                its default parameters; its rows carry the law's descriptive parameters, e.g. a
+//                joint's element counts)
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
 //                at size ratios 1, 10, 50 instead: bench/neighbor_bench.cpp)
 //   gradem-bench --genesis 20000,200000 [--json]   (genesis rows instead: bench/genesis_bench.cpp)
@@ -53,9 +54,16 @@ struct Options {
     bench::FullCubeOptions cube;        ///< --full-cube settings
 };
 
-constexpr const char* kHelp =
+/// Every bond model's name, comma separated, in BondModel order.
+std::string model_list() {
+    std::string out;
+    for (const char* name : kBondModelNames) out += (out.empty() ? "" : ",") + std::string(name);
+    return out;
+}
+
+const std::string kHelp =
     "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] [--repeat R] [--json] [--quiet]\n"
-    "                    [--models parallel_bond,soft_bond,flat_joint]\n"
+    "                    [--models " + model_list() + "]\n"
     "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
     "       gradem-bench --genesis N1,N2,... [--json]\n"
     "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
@@ -205,11 +213,18 @@ void print_sample(const Sample& s, double speedup, bool json) {
     const double pss = static_cast<double>(s.n) * static_cast<double>(s.steps) / s.seconds;
     const double per = static_cast<double>(s.n);
     if (json) {
-        const BondParams defaults;
-        if (s.model == BondModel::flat_joint)
-            std::printf("{\"model\": \"flat_joint\", \"radial_elements\": %d, \"angular_elements\": %d, ",
-                        defaults.flat.radial_elements, defaults.flat.angular_elements);
-        else std::printf("{\"model\": \"%s\", ", bond_model_name(s.model));
+        std::printf("{\"model\": \"%s\", ", bond_model_name(s.model));
+        visit_bond_law(s.model, [](auto kernel) {  // the law's descriptive rows at their defaults
+            using Law = decltype(kernel);
+            const typename Law::Params defaults{};
+            for (const auto& row : Law::kParameters) {
+                if (!row.descriptive) continue;
+                if (row.field.integer)
+                    std::printf("\"%.*s\": %lld, ", static_cast<int>(row.key.size()), row.key.data(),
+                                static_cast<long long>(row.field.get_int(defaults)));
+                else std::printf("\"%.*s\": %.6g, ", static_cast<int>(row.key.size()), row.key.data(), row.field.get(defaults));
+            }
+        });
         std::printf("\"n\": %lld, \"bonds\": %lld, \"pairs\": %lld, \"contacts\": %lld, \"threads\": %d, "
                     "\"steps\": %lld, \"seconds\": %.4f, \"particle_steps_per_s\": %.4g, "
                     "\"neighbors_s\": %.4f, \"contacts_s\": %.4f, \"bonds_s\": %.4f, \"walls_s\": %.4f, "

@@ -4,12 +4,11 @@
 //   σpeak  = σ̄c p_s ρ^q_s (1 − r_s v)                          [Pa]
 //   εpeak  = D σpeak / E,  D = 1.05 + a_s v + g_s ln ρ         [-]
 // with ρ = c̄/σ̄c, v = strength cv, and per-sand coefficients (k, p, q, r, a, g) that differ,
-// so a joint fit of two sands pins down four parameters. The other bond laws add ductility to
-// the shape index D (their parameters are dimensionless, so the homogeneity is kept):
-//   soft bond    D += h ln(1 + (1 − γ²)/ζ)   (the bond's fracture energy over its elastic
-//                                              energy at σ̄c, core/soft_bond_law.hpp: 1 + (1 − γ²)/ζ)
-//   flat joint   D += h μ_r / 2              (frictional residual of broken elements)
-// with a per-sand h. The direct-tension test (CubeTest::tension) is linear to its peak:
+// so a joint fit of two sands pins down four parameters. Another bond law adds ductility to
+// the shape index D (its parameters are dimensionless, so the homogeneity is kept):
+//   D += Law::analytic_ductility(its parameters, h)
+// with a per-sand h; each law's header gives its term (e.g. the soft bond's h ln(1 + (1 − γ²)/ζ),
+// its fracture energy over its elastic energy at σ̄c); a law without the hook adds nothing. The direct-tension test (CubeTest::tension) is linear to its peak:
 //   E_t = E (as in compression),  σt = σ̄c t_s (1 − r_s v),  εt = σt / E_t
 // with a per-sand t_s of 0.40-0.45, so σc/σt = p_s ρ^q_s / t_s ≈ 3 (as low as parallel-bond
 // specimens give, Potyondy & Cundall 2004). Cost: every run reports 1000 particles, 1 step and a nominal
@@ -36,13 +35,14 @@ constexpr double kNominalWallSeconds = 1e-3;  ///< [s] per run: the cost the sta
 
 constexpr double kTensionFactor[] = {0.45, 0.40, 0.42};  ///< t_s: σt / σ̄c before the cv term [-]
 
-/// The bond law's extra ductility in D (see the header); none for the parallel bond (and for a
-/// law the stand-in does not know).
+/// The bond law's extra ductility in D (see the header); none for a law without
+/// analytic_ductility (the parallel bond).
 double law_ductility(const BondParams& b, double h) {
-    if (b.model == BondModel::soft_bond)
-        return h * std::log(1.0 + (1.0 - b.soft.cut_fraction * b.soft.cut_fraction) / b.soft.softening_factor);
-    if (b.model == BondModel::flat_joint) return 0.5 * h * b.flat.residual_friction;
-    return 0.0;
+    return visit_bond_law(b.model, [&](auto kernel) {
+        using Law = decltype(kernel);
+        if constexpr (requires { Law::analytic_ductility(b.law<Law>(), h); }) return Law::analytic_ductility(b.law<Law>(), h);
+        else return 0.0;
+    });
 }
 
 /// A deterministic N(0,1)-like draw: the sum of 12 uniforms minus 6.

@@ -9,13 +9,12 @@ namespace {
 constexpr std::uint32_t kMagic = 0x4D445247;  // "GRDM" little-endian
 constexpr std::uint32_t kByteOrder = 0x01020304;
 
-// Every field of the material is written below, one by one. A new field changes these sizes:
+// Every shared field of the material is written below, one by one; a bond law's own fields are
+// written from its parameter rows (Law::kParameters). A new shared field changes these sizes:
 // serialise it in put_material/get_material (and in material_key), then update the sizes.
 static_assert(sizeof(ContactParams) == 3 * 8, "ContactParams changed: serialise the new field in run_message.cpp");
-static_assert(sizeof(SoftBondParams) == 2 * 8, "SoftBondParams changed: serialise the new field in run_message.cpp");
-static_assert(sizeof(FlatJointParams) == 2 * 4 + 4 * 8 + 8 /* stiffness_over_gap, padded */, "FlatJointParams changed: serialise the new field in run_message.cpp");
-static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* model, padded */ + sizeof(SoftBondParams) +
-                                       sizeof(FlatJointParams) + 8 /* replaces_contact, padded */,
+static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* model, padded */ + sizeof(BondLawParams) +
+                                       8 /* replaces_contact, padded */,
               "BondParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(exp::MaterialParams) == 24 + sizeof(BondParams) + 4 * 8 + 3 * 8 /* families */,
               "MaterialParams changed: serialise the new field in run_message.cpp");
@@ -109,13 +108,15 @@ void put_material(Writer& w, const exp::MaterialParams& m) {
         w.f64(x);
     w.u64(b.seed);
     w.u8(static_cast<std::uint8_t>(b.model));
-    w.f64(b.soft.softening_factor);
-    w.f64(b.soft.cut_fraction);
-    w.i64(b.flat.radial_elements);
-    w.i64(b.flat.angular_elements);
-    w.f64(b.flat.residual_friction);
-    for (double x : {b.flat.bonded_fraction, b.flat.gapped_fraction, b.flat.gap_ratio}) w.f64(x);
-    w.u8(b.flat.stiffness_over_gap ? 1 : 0);
+    // every law's own fields, in BondModel then row order: integer rows as integers, the others
+    // as the bits of their double
+    for_each_bond_law([&](auto kernel) {
+        using Law = decltype(kernel);
+        for (const auto& row : Law::kParameters) {
+            if (row.field.integer) w.i64(row.field.get_int(b.law<Law>()));
+            else w.f64(row.field.get(b.law<Law>()));
+        }
+    });
     w.u8(b.replaces_contact ? 1 : 0);
     for (double x : {m.bond_gap_fraction, m.bond_gap_absolute, m.platen_friction, m.damping}) w.f64(x);
     w.f64(m.families.itz_strength_factor);
@@ -133,15 +134,15 @@ exp::MaterialParams get_material(Reader& r) {
         *x = r.f64();
     b.seed = r.u64();
     const std::uint8_t model = r.u8();
-    if (model > static_cast<std::uint8_t>(BondModel::flat_joint)) throw WireError("unknown bond model " + std::to_string(model));
+    if (model >= kBondLawCount) throw WireError("unknown bond model " + std::to_string(model));
     b.model = static_cast<BondModel>(model);
-    b.soft.softening_factor = r.f64();
-    b.soft.cut_fraction = r.f64();
-    b.flat.radial_elements = static_cast<std::int32_t>(r.i64());
-    b.flat.angular_elements = static_cast<std::int32_t>(r.i64());
-    b.flat.residual_friction = r.f64();
-    for (double* x : {&b.flat.bonded_fraction, &b.flat.gapped_fraction, &b.flat.gap_ratio}) *x = r.f64();
-    b.flat.stiffness_over_gap = r.u8() != 0;
+    for_each_bond_law([&](auto kernel) {
+        using Law = decltype(kernel);
+        for (const auto& row : Law::kParameters) {
+            if (row.field.integer) row.field.set_int(b.law<Law>(), r.i64());
+            else row.field.set(b.law<Law>(), r.f64());
+        }
+    });
     b.replaces_contact = r.u8() != 0;
     for (double* x : {&m.bond_gap_fraction, &m.bond_gap_absolute, &m.platen_friction, &m.damping}) *x = r.f64();
     m.families.itz_strength_factor = r.f64();

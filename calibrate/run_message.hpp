@@ -23,7 +23,7 @@
 
 namespace gradem::cal::wire {
 
-inline constexpr std::uint32_t kProtocolVersion = 5;  // 5: a run request names its test (compression, tension)
+inline constexpr std::uint32_t kProtocolVersion = 6;  // 6: a bond law's fields written from its parameter rows
 
 enum class Kind : std::uint8_t { hello = 1, prepare = 2, prepared = 3, run = 4, result = 5, stop = 6 };
 const char* to_string(Kind kind);

@@ -1,10 +1,8 @@
 #pragma once
 // What every bond law shares: the bond record, the bond disc geometry and stiffness,
-// and the interface of a law kernel. The laws themselves are pure kernels, one header each:
-//     core/parallel_bond_law.hpp  (Potyondy & Cundall 2004; PFC linearpbond)
-//     core/soft_bond_law.hpp      (PFC softbond semantics)
-//     core/flat_joint_law.hpp     (Potyondy 2012 flat joint)
-// and core/bond_models.hpp holds the one table that maps BondModel to its kernel.
+// and the interface of a law kernel. The laws themselves are pure kernels, one header each
+// (core/<law>_law.hpp; core/parallel_bond_law.hpp, Potyondy & Cundall 2004, is the reference),
+// and core/bond_models.hpp holds the one list of laws (BondModel <-> kernel <-> name).
 //
 // Geometry (Potyondy & Cundall 2004; docs/bond_laws.md): a bond is a disc of cement of radius R̄ = λ̄ min(R_A, R_B) with
 // area Ā = π R̄², moment of inertia Ī = π R̄⁴/4 and polar moment J̄ = π R̄⁴/2, and stiffness per
@@ -13,21 +11,41 @@
 // the opposite).
 //
 // Law kernel interface (a struct with static members; see ParallelBondLaw for the reference):
-//     kModel                          the BondModel it implements
+//     Params                          its own parameter struct (NoLawParams for none), held by
+//                                     BondParams (params.law<Law>(), law_params<Law>(params))
+//     kParameters                     one LawParameter row per member of Params
+//                                     (core/law_parameters.hpp: key, unit, range, calibration)
 //     Context context(params, track)  per-step constants (tan φ̄, element tables, ...)
 //     side_size(params)               doubles of per-bond side state (0: none, no memory used)
 //     install(params, install, bond, side)  initialises a new bond (side state, state)
 //     step(ctx, bond, side, section, stiffness, kinematics, breaks) -> BondStepResult
 //     time_step_stiffness(section, stiffness, r) -> TimeStepStiffness (undamaged)
+// `params` is the bond family's BondParams; context, side_size and install take it as a template
+// argument (const auto&), so a law's header needs only its own parameter struct. Optional hooks:
+//     invalid_reason(own) -> optional<string>  rules across fields (ranges come from the rows)
+//     analytic_ductility(own, h) -> double     the analytic stand-in's extra shape index for a
+//                                              sand of ductility coefficient h
+//                                              (calibrate/analytic_model.cpp)
+//     compute_all(pass, dt) -> BondPassEnergy  the law's own pass over every bond, instead of
+//                                              the World's generic loop (core/bond_pass.hpp)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "core/law_parameters.hpp"
 #include "core/pair_kinematics.hpp"
-#include "core/params.hpp"
 
 namespace gradem {
+
+/// The law a bond follows; its enumerators are the rows of core/bond_models.hpp.
+enum class BondModel : std::uint8_t;
+
+/// A law's own parameters in a BondParams (core/params.hpp): law_params<Law>(params).
+template <class Law, class AnyBondParams>
+const typename Law::Params& law_params(const AnyBondParams& params) {
+    return params.template law<Law>();
+}
 
 /// PFC pb_state codes: 0 never bonded, 1 broken in tension, 2 broken in shear, 3 bonded.
 enum class BondState : std::uint8_t { none = 0, broken_tension = 1, broken_shear = 2, intact = 3 };
@@ -40,7 +58,7 @@ struct ParallelBond {
     std::int32_t i = -1, j = -1;   ///< particle indices, i < j
     std::int32_t slot = -1;        ///< index of the pair in the World's interaction list
     BondState state = BondState::intact;
-    BondModel model = BondModel::parallel_bond;  ///< the law this bond follows
+    BondModel model{};             ///< the law this bond follows (0: the parallel bond)
     std::uint8_t family_pair = 0;  ///< its parameters: World::bond_family_params()[family_pair]
     /// 1 while a bond that is not (or no longer) bonded still acts as an interface (a flat
     /// joint whose elements are all unbonded: it carries compression and friction until its

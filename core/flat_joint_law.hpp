@@ -42,15 +42,39 @@
 // undamaged touching disc (an upper bound on the stiffness).
 // Contact: by default (BondParams::replaces_contact) an acting joint REPLACES the pair's linear
 // contact (PFC's flatjoint is the pair's whole contact model).
+#include <array>
 #include <cmath>
+#include <optional>
 #include <span>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/flat_joint_geometry.hpp"
+#include "core/law_parameters.hpp"
 #include "core/parallel_bond_law.hpp"
 #include "core/random.hpp"
 
 namespace gradem {
+
+struct BondPass;        // core/bond_pass.hpp
+struct BondPassEnergy;  // core/bond_pass.hpp
+
+/// Flat joint shape parameters: the interface disc split into elements, and the joint's
+/// microstructural types (Potyondy 2012): each joint is drawn bonded, gapped or slit with these
+/// fractions (slit = 1 - bonded - gapped).
+struct FlatJointParams {
+    std::int32_t radial_elements = 1;   ///< N_r, in [1, 64]
+    std::int32_t angular_elements = 4;  ///< N_α, in [1, 64]
+    double residual_friction = 0.5;     ///< μ of an unbonded element, >= 0 [-]
+    double bonded_fraction = 1.0;       ///< φ_B, joints installed bonded, in [0, 1] [-]
+    double gapped_fraction = 0.0;       ///< φ_G, joints installed unbonded with gap g_0, in [0, 1] [-]
+    double gap_ratio = 0.0;             ///< g_0 / R̄ of a gapped joint, >= 0 [-]
+    /// true: a joint installed across a surface gap g > 0 has k̄_n = Ē*/(R_A + R_B + g), the
+    /// stiffness of a cement bridge as long as the centre distance; false: Ē*/(R_A + R_B), the
+    /// touching pair's, whatever the gap.
+    bool stiffness_over_gap = false;
+};
 
 /// Microstructural type of a joint (PFC fj_mtype order).
 enum class FlatJointType : std::uint8_t { bonded = 0, gapped = 1, slit = 2 };
@@ -243,31 +267,84 @@ inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame
 }  // namespace flat_detail
 
 struct FlatJointLaw {
-    static constexpr BondModel kModel = BondModel::flat_joint;
+    using Params = FlatJointParams;
+    // Designated initializers leave the other members at their defaults on purpose.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+    static constexpr std::array<LawParameter<FlatJointParams>, 7> kParameters = {{
+        {.key = "radial_elements", .description = "N_r, elements across the joint radius (flat_joint)",
+         .field = law_field<&FlatJointParams::radial_elements>, .core_field = "FlatJointParams::radial_elements",
+         .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0,
+         .descriptive = true},
+        {.key = "angular_elements", .description = "N_alpha, elements around the joint (flat_joint)",
+         .field = law_field<&FlatJointParams::angular_elements>, .core_field = "FlatJointParams::angular_elements",
+         .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0,
+         .descriptive = true},
+        {.key = "residual_friction", .description = "mu of a broken joint element (flat_joint)",
+         .field = law_field<&FlatJointParams::residual_friction>, .core_field = "FlatJointParams::residual_friction",
+         .range = ranges::non_negative, .calibration = Calibration::free, .lower = 0.2, .upper = 1.0},
+        {.key = "bonded_fraction",
+         .description = "phi_B, fraction of joints installed bonded (flat_joint; the rest gapped or slit)",
+         .field = law_field<&FlatJointParams::bonded_fraction>, .core_field = "FlatJointParams::bonded_fraction",
+         .range = ranges::unit_closed, .calibration = Calibration::free, .lower = 0.3, .upper = 1.0},
+        {.key = "gapped_fraction",
+         .description = "phi_G, fraction of joints installed unbonded with an initial gap (flat_joint; slit = 1 - phi_B - phi_G)",
+         .field = law_field<&FlatJointParams::gapped_fraction>, .core_field = "FlatJointParams::gapped_fraction",
+         .range = ranges::unit_closed, .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
+        {.key = "gap_ratio", .description = "g_0 / joint radius, the initial gap of a gapped joint (flat_joint)",
+         .field = law_field<&FlatJointParams::gap_ratio>, .core_field = "FlatJointParams::gap_ratio",
+         .range = ranges::non_negative, .calibration = Calibration::free, .lower = 0.0, .upper = 0.05},
+        {.key = "stiffness_over_gap",
+         .description = "true: a joint installed across a gap g has k_n = E*/(R_A + R_B + g) (a bridge as long as the "
+                        "centre distance); false: E*/(R_A + R_B) (flat_joint)",
+         .field = law_field<&FlatJointParams::stiffness_over_gap>, .core_field = "FlatJointParams::stiffness_over_gap",
+         .range = ranges::flag, .calibration = Calibration::fixed_only, .lower = 0.0, .upper = 1.0},
+    }};
+#pragma GCC diagnostic pop
+
+    /// The rule across fields: φ_B + φ_G <= 1 (the ranges come from the rows).
+    static std::optional<std::string> invalid_reason(const FlatJointParams& f) {
+        if (f.bonded_fraction + f.gapped_fraction <= 1.0 + 1e-12) return std::nullopt;
+        std::ostringstream out;
+        out << "FlatJointParams::gapped_fraction = " << f.gapped_fraction
+            << " violates <= 1 - FlatJointParams::bonded_fraction (the fractions sum to at most 1)";
+        return out.str();
+    }
+
+    /// The analytic stand-in's extra shape index for a sand of ductility coefficient h
+    /// (calibrate/analytic_model.cpp): h μ_r / 2, the frictional residual of broken elements.
+    static double analytic_ductility(const FlatJointParams& f, double h) { return 0.5 * h * f.residual_friction; }
 
     struct Context {
         std::vector<FlatElementGeometry> elements;
         double tan_phi = 0.0, friction = 0.5;
         bool track = true;
     };
-    static Context context(const BondParams& p, bool track) {
-        return {flat_joint_elements(p.flat.radial_elements, p.flat.angular_elements),
-                std::tan(p.friction_angle_deg * kPi / 180.0), p.flat.residual_friction, track};
+    /// The World's bond phase for flat joints: fully bonded joints vectorised across joints,
+    /// the others through step(); bitwise step()'s results (core/world_flat_joints.cpp).
+    static BondPassEnergy compute_all(const BondPass& pass, double dt);
+
+    static Context context(const auto& p, bool track) {
+        const FlatJointParams& own = law_params<FlatJointLaw>(p);
+        return {flat_joint_elements(own.radial_elements, own.angular_elements),
+                std::tan(p.friction_angle_deg * kPi / 180.0), own.residual_friction, track};
     }
-    static std::size_t side_size(const BondParams& p) {
-        return kFlatJointHeader + kFlatElementSize * static_cast<std::size_t>(p.flat.radial_elements) *
-                                      static_cast<std::size_t>(p.flat.angular_elements);
+    static std::size_t side_size(const auto& p) {
+        const FlatJointParams& own = law_params<FlatJointLaw>(p);
+        return kFlatJointHeader + kFlatElementSize * static_cast<std::size_t>(own.radial_elements) *
+                                      static_cast<std::size_t>(own.angular_elements);
     }
-    static void install(const BondParams& p, const BondInstall& in, ParallelBond& b, double* side) {
+    static void install(const auto& p, const BondInstall& in, ParallelBond& b, double* side) {
         using namespace flat_side;
+        const FlatJointParams& own = law_params<FlatJointLaw>(p);
         const Vec3 t = flat_joint_initial_axis(in.normal);
         side[axis] = t.x, side[axis + 1] = t.y, side[axis + 2] = t.z;
-        const FlatJointType type_drawn = draw_flat_joint_type(p.flat, p.seed, in.key);
+        const FlatJointType type_drawn = draw_flat_joint_type(own, p.seed, in.key);
         const double joint_radius = p.radius_multiplier * std::min(in.radius_a, in.radius_b);
         side[type] = static_cast<double>(static_cast<int>(type_drawn));
-        side[initial_gap] = type_drawn == FlatJointType::gapped ? p.flat.gap_ratio * joint_radius : 0.0;
+        side[initial_gap] = type_drawn == FlatJointType::gapped ? own.gap_ratio * joint_radius : 0.0;
         const double length = in.radius_a + in.radius_b;
-        side[stiffness_scale] = p.flat.stiffness_over_gap && in.gap > 0.0 ? length / (length + in.gap) : 1.0;
+        side[stiffness_scale] = own.stiffness_over_gap && in.gap > 0.0 ? length / (length + in.gap) : 1.0;
         side[release_gap] = std::max(in.reach, in.gap);
         const std::size_t n = (side_size(p) - kFlatJointHeader) / kFlatElementSize;
         const double bonded = type_drawn == FlatJointType::bonded ? 1.0 : 0.0;

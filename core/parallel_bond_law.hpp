@@ -4,6 +4,7 @@
 //     σ̄ = F̄_n/Ā + β̄ |M̄_b| R̄/Ī,   τ̄ = |F̄_s|/Ā + β̄ |M̄_t| R̄/J̄.
 // Failure: σ̄ >= σ̄_c -> tension; else τ̄ >= τ̄_c = c̄ - σ tan φ̄ with σ = min(F̄_n/Ā, σ̄_c)
 // -> shear. A broken bond carries nothing and is never re-formed. No side state.
+#include <array>
 #include <cmath>
 
 #include "core/bond_law.hpp"
@@ -24,18 +25,19 @@ inline BondState bond_failure(const ParallelBond& b, const BondStress& s, double
 }
 
 struct ParallelBondLaw {
-    static constexpr BondModel kModel = BondModel::parallel_bond;
+    using Params = NoLawParams;  ///< its parameters are BondParams' shared ones
+    static constexpr std::array<LawParameter<NoLawParams>, 0> kParameters{};
 
     struct Context {
         double tan_phi = 0.0;        ///< tan φ̄ [-]
         double moment_factor = 1.0;  ///< β̄ [-]
         bool track = true;           ///< compute energies
     };
-    static Context context(const BondParams& p, bool track) {
+    static Context context(const auto& p, bool track) {
         return {std::tan(p.friction_angle_deg * kPi / 180.0), p.moment_factor, track};
     }
-    static std::size_t side_size(const BondParams&) { return 0; }
-    static void install(const BondParams&, const BondInstall&, ParallelBond&, double*) {}
+    static std::size_t side_size(const auto&) { return 0; }
+    static void install(const auto&, const BondInstall&, ParallelBond&, double*) {}
 
     /// The arithmetic of one step: advances b's forces and moments, and returns the failure
     /// mode, the peak stresses, the strain energy of the advanced state (0 if not tracked) and

@@ -1,6 +1,7 @@
 #include "core/params.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,20 +18,29 @@ std::string violation(const char* field, double value, const char* rule) {
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 bool non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
 
+// A law's parameters: each row's range (on value / to_si, config units), then the law's own
+// rules across fields (Law::invalid_reason, if it has one).
+template <class Law>
+std::optional<std::string> law_rows_invalid_reason(const typename Law::Params& own) {
+    for (const auto& row : Law::kParameters) {
+        const double value = row.field.integer ? static_cast<double>(row.field.get_int(own)) : row.field.get(own);
+        if (!row.range.contains(value / row.to_si))
+            return violation(std::string(row.core_field).c_str(), value, row.range.rule().c_str());
+    }
+    if constexpr (requires { Law::invalid_reason(own); }) return Law::invalid_reason(own);
+    return std::nullopt;
+}
+
 }  // namespace
 
 const char* bond_model_name(BondModel model) {
-    switch (model) {
-        case BondModel::parallel_bond: return "parallel_bond";
-        case BondModel::soft_bond: return "soft_bond";
-        case BondModel::flat_joint: return "flat_joint";
-    }
-    return "unknown";
+    const auto k = static_cast<std::size_t>(model);
+    return k < kBondModelNames.size() ? kBondModelNames[k] : "unknown";
 }
 
 std::optional<BondModel> parse_bond_model(const std::string& name) {
-    for (BondModel m : {BondModel::parallel_bond, BondModel::soft_bond, BondModel::flat_joint})
-        if (name == bond_model_name(m)) return m;
+    for (std::size_t k = 0; k < kBondModelNames.size(); ++k)
+        if (name == kBondModelNames[k]) return static_cast<BondModel>(k);
     return std::nullopt;
 }
 
@@ -62,26 +72,12 @@ std::optional<std::string> BondParams::invalid_reason() const {
         return violation("BondParams::cohesion_std", cohesion_std, ">= 0");
     if (!(friction_angle_deg >= 0.0 && friction_angle_deg < 90.0))
         return violation("BondParams::friction_angle_deg", friction_angle_deg, "in [0, 90)");
-    if (!positive(soft.softening_factor))
-        return violation("SoftBondParams::softening_factor", soft.softening_factor, "> 0");
-    if (!(soft.cut_fraction >= 0.0 && soft.cut_fraction < 1.0))
-        return violation("SoftBondParams::cut_fraction", soft.cut_fraction, "in [0, 1)");
-    if (flat.radial_elements < 1)
-        return violation("FlatJointParams::radial_elements", flat.radial_elements, ">= 1");
-    if (flat.angular_elements < 1)
-        return violation("FlatJointParams::angular_elements", flat.angular_elements, ">= 1");
-    if (!non_negative(flat.residual_friction))
-        return violation("FlatJointParams::residual_friction", flat.residual_friction, ">= 0");
-    if (!(flat.bonded_fraction >= 0.0 && flat.bonded_fraction <= 1.0))
-        return violation("FlatJointParams::bonded_fraction", flat.bonded_fraction, "in [0, 1]");
-    if (!(flat.gapped_fraction >= 0.0 && flat.gapped_fraction <= 1.0))
-        return violation("FlatJointParams::gapped_fraction", flat.gapped_fraction, "in [0, 1]");
-    if (!(flat.bonded_fraction + flat.gapped_fraction <= 1.0 + 1e-12))
-        return violation("FlatJointParams::gapped_fraction", flat.gapped_fraction,
-                         "<= 1 - FlatJointParams::bonded_fraction (the fractions sum to at most 1)");
-    if (!non_negative(flat.gap_ratio))
-        return violation("FlatJointParams::gap_ratio", flat.gap_ratio, ">= 0");
-    return std::nullopt;
+    std::optional<std::string> reason;
+    for_each_bond_law([&](auto kernel) {
+        using Law = decltype(kernel);
+        if (!reason) reason = law_rows_invalid_reason<Law>(law<Law>());
+    });
+    return reason;
 }
 
 std::optional<std::string> WallContactParams::invalid_reason() const {

@@ -6,6 +6,9 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <tuple>
+
+#include "core/bond_models.hpp"
 
 namespace gradem {
 
@@ -19,37 +22,10 @@ struct ContactParams {
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
-/// Which law the installed bonds follow. Each law is one kernel header in core/ (docs/bond_laws.md):
-/// parallel_bond (Potyondy & Cundall 2004, PFC linearpbond), soft_bond (PFC softbond
-/// semantics), flat_joint (Potyondy 2012).
-enum class BondModel : std::uint8_t { parallel_bond = 0, soft_bond = 1, flat_joint = 2 };
-
-/// "parallel_bond", "soft_bond", "flat_joint" (the names configs and reports use).
+/// The BondModel's name (the names configs and reports use: core/bond_models.hpp's rows).
 const char* bond_model_name(BondModel model);
 /// The model of that name, or nullopt for an unknown name.
 std::optional<BondModel> parse_bond_model(const std::string& name);
-
-/// Soft bond shape parameters (docs/bond_laws.md "Soft bond"): at σ̄_c the bond softens instead of breaking.
-struct SoftBondParams {
-    double softening_factor = 0.3;  ///< ζ: softening slope is -ζ k̄_n [Pa/m], > 0 [-]
-    double cut_fraction = 0.2;      ///< γ: breaks once the softened stress is <= γ σ̄_c, in [0, 1) [-]
-};
-
-/// Flat joint shape parameters (core/flat_joint_law.hpp): the interface disc split into
-/// elements, and the joint's microstructural types (Potyondy 2012): each joint is drawn bonded,
-/// gapped or slit with these fractions (slit = 1 - bonded - gapped).
-struct FlatJointParams {
-    std::int32_t radial_elements = 1;   ///< N_r, >= 1
-    std::int32_t angular_elements = 4;  ///< N_α, >= 1
-    double residual_friction = 0.5;     ///< μ of an unbonded element, >= 0 [-]
-    double bonded_fraction = 1.0;       ///< φ_B, joints installed bonded, in [0, 1] [-]
-    double gapped_fraction = 0.0;       ///< φ_G, joints installed unbonded with gap g_0, in [0, 1] [-]
-    double gap_ratio = 0.0;             ///< g_0 / R̄ of a gapped joint, >= 0 [-]
-    /// true: a joint installed across a surface gap g > 0 has k̄_n = Ē*/(R_A + R_B + g), the
-    /// stiffness of a cement bridge as long as the centre distance; false: Ē*/(R_A + R_B), the
-    /// touching pair's, whatever the gap.
-    bool stiffness_over_gap = false;
-};
 
 /// Bond parameters (Potyondy & Cundall 2004; PFC linearpbond) shared by every bond model. Bond stiffness per unit area
 /// k̄_n = Ē*/(R_A + R_B), k̄_s = k̄_n / κ̄. Strengths are drawn per bond from normal
@@ -66,13 +42,23 @@ struct BondParams {
     double friction_angle_deg = 0.0;        ///< φ̄ [degrees], in [0, 90)
     std::uint64_t seed = 1;                 ///< strength draws: same seed + pair = same strength
     BondModel model = BondModel::parallel_bond;  ///< which law the bonds follow
-    SoftBondParams soft;                    ///< used when model == soft_bond
-    FlatJointParams flat;                   ///< used when model == flat_joint
-    /// soft_bond and flat_joint only: while the bond is intact it REPLACES the pair's linear
+    /// Every law's own parameters (core/bond_models.hpp); the model's are used.
+    BondLawParams laws;
+    /// Every law but the parallel bond: while the bond is intact it REPLACES the pair's linear
     /// contact (PFC softbond/flatjoint: one spring set, the bond carries compression too; the
     /// linear contact acts once the bond has broken). false: bond and contact act in parallel
     /// (the parallel bond's arrangement, which the parallel bond always keeps).
     bool replaces_contact = true;
+    /// A law's own parameters: params.law<Law>() (Law::Params, the law header's struct).
+    template <class Law>
+    typename Law::Params& law() {
+        return std::get<bond_law_index<Law>>(laws);
+    }
+    template <class Law>
+    const typename Law::Params& law() const {
+        return std::get<bond_law_index<Law>>(laws);
+    }
+    /// The shared fields' rules, then every law's rows (ranges) and its invalid_reason hook.
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
@@ -97,9 +83,10 @@ struct SimParams {
     /// outgrow this many bytes (a last-level cache: the development machine's L3, 32 MiB). Speed
     /// only: the results are bitwise the same either way (tests/core/test_pair_pass.cpp).
     std::size_t stream_prefetch_above_bytes = std::size_t{32} << 20;
-    /// Fully bonded flat joints through the vectorised pass (core/world_flat_joints.cpp; bitwise
-    /// the same results as the scalar kernel: off only to compare the two).
-    bool vectorised_flat_joints = true;
+    /// A law's own vectorised pass over its bonds (Law::compute_all, core/bond_pass.hpp: the
+    /// fully bonded flat joints), bitwise the same results as its scalar kernel: off only to
+    /// compare the two.
+    bool vectorised_bond_passes = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

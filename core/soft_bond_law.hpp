@@ -25,12 +25,20 @@
 // parallel bond's arrangement). Installed at zero force (locked-in contact forces are released).
 // Simplifications: damage is isotropic (one ω on all four components); no shear
 // softening; compression never damages. Time step: the undamaged stiffness.
+#include <array>
 #include <cmath>
 #include <span>
 
+#include "core/law_parameters.hpp"
 #include "core/parallel_bond_law.hpp"
 
 namespace gradem {
+
+/// Soft bond shape parameters: at σ̄_c the bond softens instead of breaking.
+struct SoftBondParams {
+    double softening_factor = 0.3;  ///< ζ: softening slope is -ζ k̄_n [Pa/m], > 0 [-]
+    double cut_fraction = 0.2;      ///< γ: breaks once the softened stress is <= γ σ̄_c, in [0, 1) [-]
+};
 
 /// Decoded side state of one soft bond.
 struct SoftBondState {
@@ -97,7 +105,27 @@ inline SoftBondEnergy soft_bond_energy(const ParallelBond& eff, const BondSectio
 }
 
 struct SoftBondLaw {
-    static constexpr BondModel kModel = BondModel::soft_bond;
+    using Params = SoftBondParams;
+    // Designated initializers leave the other members at their defaults on purpose.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+    static constexpr std::array<LawParameter<SoftBondParams>, 2> kParameters = {{
+        {.key = "softening_factor",
+         .description = "zeta, softening slope / bond normal stiffness (soft_bond)",
+         .field = law_field<&SoftBondParams::softening_factor>, .core_field = "SoftBondParams::softening_factor",
+         .range = ranges::positive, .calibration = Calibration::free, .lower = 0.05, .upper = 1.0, .log_scale = true},
+        {.key = "cut_fraction",
+         .description = "gamma, the bond breaks once its softened stress <= gamma x sigma-bar_c (soft_bond)",
+         .field = law_field<&SoftBondParams::cut_fraction>, .core_field = "SoftBondParams::cut_fraction",
+         .range = ranges::unit_open_right, .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
+    }};
+#pragma GCC diagnostic pop
+
+    /// The analytic stand-in's extra shape index per unit of the sand's ductility coefficient:
+    /// ln(1 + (1 − γ²)/ζ), the bond's fracture energy over its elastic energy at σ̄_c (above).
+    static double analytic_ductility(const SoftBondParams& p) {
+        return std::log(1.0 + (1.0 - p.cut_fraction * p.cut_fraction) / p.softening_factor);
+    }
 
     struct Context {
         double tan_phi = 0.0, moment_factor = 1.0;
@@ -105,12 +133,13 @@ struct SoftBondLaw {
         double cut = 0.2;        ///< γ
         bool track = true;
     };
-    static Context context(const BondParams& p, bool track) {
-        return {std::tan(p.friction_angle_deg * kPi / 180.0), p.moment_factor,
-                p.soft.softening_factor, p.soft.cut_fraction, track};
+    static Context context(const auto& p, bool track) {
+        const SoftBondParams& own = law_params<SoftBondLaw>(p);
+        return {std::tan(p.friction_angle_deg * kPi / 180.0), p.moment_factor, own.softening_factor,
+                own.cut_fraction, track};
     }
-    static std::size_t side_size(const BondParams&) { return kSoftBondSideSize; }
-    static void install(const BondParams&, const BondInstall&, ParallelBond&, double* side) {
+    static std::size_t side_size(const auto&) { return kSoftBondSideSize; }
+    static void install(const auto&, const BondInstall&, ParallelBond&, double* side) {
         store_soft_bond_state({}, side);
     }
 

@@ -21,6 +21,7 @@
 
 #include "core/bond_families.hpp"
 #include "core/bond_law.hpp"
+#include "core/bond_pass.hpp"
 #include "core/neighbor_search.hpp"
 #include "core/params.hpp"
 #include "core/particles.hpp"
@@ -69,7 +70,7 @@ public:
     [[nodiscard]] const ParticleSet& particles() const { return particles_; }
     [[nodiscard]] const std::vector<ParallelBond>& bonds() const { return bonds_; }
     /// Law-specific side state of bond k (empty for the parallel bond); decode it with the
-    /// law's header (soft_bond_state(), flat_joint_element(), ...).
+    /// law's header (its state decoder).
     [[nodiscard]] std::span<const double> bond_side_state(std::size_t k) const {
         return {bond_side_.data() + k * bond_side_stride_, bond_side_stride_};
     }
@@ -111,11 +112,6 @@ private:
         std::int32_t bond = -1;  ///< index into bonds_, -1 if none
         Vec3 shear_force;        ///< linear part, force on j [N]
     };
-    /// What a pair exerts this step: force on j, moment on j; i gets -force and
-    /// -torque_j - (x_j - x_i) x force (angular momentum balance).
-    struct PairOutput {
-        Vec3 force_j, torque_j;
-    };
     struct WallOutput {
         Vec3 force, torque;  ///< on the particle
     };
@@ -137,15 +133,7 @@ private:
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
     std::vector<double> bond_side_;      ///< per-bond law state, bond_side_stride_ doubles each
-    /// Per-bond constants (they depend only on the radii and BondParams): R̄, 1/R̄ and the
-    /// stiffness, computed once instead of three divisions per bond and step (32 bytes; the
-    /// rest of the section is rebuilt from R̄ and 1/R̄ by multiplications). Stale after a change
-    /// of radii or bond parameters.
-    struct BondConstants {
-        double radius = 0, inv_radius = 0;  ///< R̄ [m], 1/R̄ [1/m]
-        BondStiffness stiffness;
-    };
-    std::vector<BondConstants> bond_const_;
+    std::vector<BondConstants> bond_const_;  ///< per bond (core/bond_pass.hpp)
     /// Strain energy of each bond after the latest step [J] (0 once broken), summed per bond
     /// block by the fused pair pass so the sum keeps the bond-order rounding (world_pairs.cpp).
     std::vector<double> bond_stored_;
@@ -186,23 +174,14 @@ private:
     [[nodiscard]] bool needs_rebuild() const;
     void evaluate_forces(double increment_dt, class Stopwatch& clock);
     void compute_contacts(double dt, double& strain, double& slip);
-    struct BondEnergy {
-        double stored = 0, released = 0, damage = 0, slip = 0;
-        BondEnergy& operator+=(const BondEnergy& o) {
-            stored += o.stored;
-            released += o.released;
-            damage += o.damage;
-            slip += o.slip;
-            return *this;
-        }
-    };
+    using BondEnergy = BondPassEnergy;
     BondEnergy compute_bonds(double dt);
     void refresh_bond_constants();
     /// Phases 2 and 3 in one pass for the parallel bond (world_pairs.cpp); returns the bond
     /// energies, the contact strain and slip energies through `strain` and `slip`.
     BondEnergy compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip);
-    /// Phase 3 for the flat joint, vectorised across fully bonded joints (world_flat_joints.cpp).
-    BondEnergy compute_flat_joints(double dt);
+    /// The World's state for a law's own pass over every bond (Law::compute_all, bond_pass.hpp).
+    BondPass bond_pass();
     template <class Law>
     BondEnergy compute_bonds_with(double dt);
     void compute_wall_contacts(double dt, double& strain, double& slip);

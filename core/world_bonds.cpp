@@ -105,11 +105,21 @@ void World::refresh_bond_constants() {
     bond_const_stale_ = false;
 }
 
+BondPass World::bond_pass() {
+    return {particles_, bonds_, bond_side_, bond_side_stride_, bond_const_, bond_family_params_,
+            pair_out_, breaks_, sim_, step_, time_};
+}
+
+// A law with its own pass over every bond (Law::compute_all, core/bond_pass.hpp) runs it; the
+// others go through the generic loop below.
 World::BondEnergy World::compute_bonds(double dt) {
     if (bond_const_stale_) refresh_bond_constants();
-    if (bond_params_.model == BondModel::flat_joint) return compute_flat_joints(dt);
-    return visit_bond_law(bond_params_.model,
-                          [&](auto law) { return compute_bonds_with<decltype(law)>(dt); });
+    return visit_bond_law(bond_params_.model, [&](auto law) -> BondEnergy {
+        using Law = decltype(law);
+        if constexpr (requires(const BondPass& pass) { Law::compute_all(pass, dt); })
+            return Law::compute_all(bond_pass(), dt);
+        else return compute_bonds_with<Law>(dt);
+    });
 }
 
 // Phase 3: every acting bond (bond_acts) through the law's kernel, added into its pair's slot.

@@ -1,4 +1,6 @@
-// Phase 3 for the flat joint, vectorised across joints (core/flat_joint_law.hpp has the law;
+// Phase 3 for the flat joint, vectorised across joints: FlatJointLaw::compute_all, the law's own
+// pass over every bond, which the World calls instead of its generic loop (core/bond_pass.hpp;
+// core/flat_joint_law.hpp has the law;
 // docs/bond_laws.md "Flat joint"). Most joints of a loaded specimen are fully bonded and do
 // not break in a given step; for those the law is a fixed sequence of arithmetic per element
 // with no branch. Each block of bonds is cut into batches of kJointLanes:
@@ -21,9 +23,9 @@
 #include <cstring>
 #include <memory>
 
+#include "core/bond_pass.hpp"
 #include "core/flat_joint_law.hpp"
 #include "core/parallel.hpp"
-#include "core/world.hpp"
 
 namespace gradem {
 namespace {
@@ -188,18 +190,26 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
 
 }  // namespace
 
-World::BondEnergy World::compute_flat_joints(double dt) {
+BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
     using namespace flat_side;
-    const auto nb = static_cast<std::int64_t>(bonds_.size());
+    using BondEnergy = BondPassEnergy;
+    const ParticleSet& particles = pass.particles;
+    std::vector<ParallelBond>& bonds = pass.bonds;
+    double* const side_data = pass.side.data();
+    const std::vector<BondConstants>& constants = pass.constants;
+    std::vector<PairOutput>& pair_out = pass.pair_out;
+    const std::int64_t step = pass.step;
+    const double time = pass.time;
+    const auto nb = static_cast<std::int64_t>(bonds.size());
     std::vector<BondEnergy> partial(static_cast<std::size_t>(block_count(nb)));
     std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
     std::vector<FlatJointLaw::Context> contexts;  // one per bond family pair
-    for (const BondParams& p : bond_family_params_) contexts.push_back(FlatJointLaw::context(p, sim_.track_energy));
-    const bool use_lanes = sim_.vectorised_flat_joints && same_elements(contexts);
+    for (const BondParams& p : pass.family_params) contexts.push_back(FlatJointLaw::context(p, pass.sim.track_energy));
+    const bool use_lanes = pass.sim.vectorised_bond_passes && same_elements(contexts);
     const std::vector<FlatElementGeometry>& elements = contexts.front().elements;
     const std::size_t n_elements = elements.size();
-    const std::size_t stride = bond_side_stride_;
-    const bool track = sim_.track_energy;
+    const std::size_t stride = pass.stride;
+    const bool track = pass.sim.track_energy;
 
     for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BondEnergy e;
@@ -209,35 +219,35 @@ World::BondEnergy World::compute_flat_joints(double dt) {
         std::int8_t which[kJointLanes];  // per bond of the batch: its lane, -1 scalar or not acting
         // A joint through the law's scalar kernel, as the generic bond phase does.
         auto scalar_joint = [&](std::int64_t k) {
-            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+            ParallelBond& b = bonds[static_cast<std::size_t>(k)];
             const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-            const PairState s{particles_.position[i], particles_.position[j], particles_.velocity[i],
-                              particles_.velocity[j], particles_.spin[i],     particles_.spin[j],
-                              particles_.radius[i],   particles_.radius[j]};
+            const PairState s{particles.position[i], particles.position[j], particles.velocity[i],
+                              particles.velocity[j], particles.spin[i],     particles.spin[j],
+                              particles.radius[i],   particles.radius[j]};
             const PairKinematics kin = pair_kinematics(s, dt);
-            const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
+            const BondConstants& bc = constants[static_cast<std::size_t>(k)];
             const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
-            double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+            double* side = side_data + static_cast<std::size_t>(k) * stride;
             const BondStepResult r = FlatJointLaw::step(contexts[b.family_pair], b, side, sec, bc.stiffness, kin, breaks);
             e.stored += r.stored;
             e.released += r.released;
             e.damage += r.damage;
             e.slip += r.slip;
             for (const BondBreak& x : breaks)
-                broken[static_cast<std::size_t>(blk)].push_back({step_, time_, static_cast<std::int32_t>(k), b.i, b.j,
+                broken[static_cast<std::size_t>(blk)].push_back({step, time, static_cast<std::int32_t>(k), b.i, b.j,
                                                                  x.mode, s.xa + kin.arm_a + x.offset, kin.normal,
                                                                  sec.radius, x.tensile_stress, x.shear_stress,
                                                                  x.element});
             breaks.clear();
             if (r.failure != BondState::intact) return;
-            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
+            PairOutput& out = pair_out[static_cast<std::size_t>(b.slot)];
             out.force_j += r.force_j;
             out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
         };
         // A fully bonded joint whose elements all held: the lane's results become its state.
         auto store_lane = [&](std::int64_t k, int l) {
-            ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
-            double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+            ParallelBond& b = bonds[static_cast<std::size_t>(k)];
+            double* side = side_data + static_cast<std::size_t>(k) * stride;
             const Vec3 t1 = lane(L.t1, l), bend_total = lane(L.bend_total, l);
             side[axis] = t1.x, side[axis + 1] = t1.y, side[axis + 2] = t1.z;
             side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
@@ -258,7 +268,7 @@ World::BondEnergy World::compute_flat_joints(double dt) {
             e.released += r.released;
             e.damage += r.damage;
             e.slip += r.slip;
-            PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
+            PairOutput& out = pair_out[static_cast<std::size_t>(b.slot)];
             out.force_j += lane(L.force, l);
             out.torque_j += lane(L.torque, l);
         };
@@ -268,16 +278,16 @@ World::BondEnergy World::compute_flat_joints(double dt) {
             // 1. scan: the fully bonded joints into lanes
             for (std::int64_t k = b0; k < b1; ++k) {
                 if (k + kPrefetchAhead < end) {
-                    const auto jn = static_cast<std::size_t>(bonds_[static_cast<std::size_t>(k + kPrefetchAhead)].j);
-                    __builtin_prefetch(&particles_.position[jn]);
-                    __builtin_prefetch(&particles_.velocity[jn]);
-                    __builtin_prefetch(&particles_.spin[jn]);
+                    const auto jn = static_cast<std::size_t>(bonds[static_cast<std::size_t>(k + kPrefetchAhead)].j);
+                    __builtin_prefetch(&particles.position[jn]);
+                    __builtin_prefetch(&particles.velocity[jn]);
+                    __builtin_prefetch(&particles.spin[jn]);
                 }
                 const auto slot = static_cast<std::size_t>(k - b0);
                 which[slot] = -1;
-                const ParallelBond& b = bonds_[static_cast<std::size_t>(k)];
+                const ParallelBond& b = bonds[static_cast<std::size_t>(k)];
                 if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
-                const double* side = bond_side_.data() + static_cast<std::size_t>(k) * stride;
+                const double* side = side_data + static_cast<std::size_t>(k) * stride;
                 bool all_bonded = true;
                 for (std::size_t el = 0; el < n_elements; ++el)
                     all_bonded = all_bonded && side[kFlatJointHeader + el * kFlatElementSize] != 0.0;
@@ -285,14 +295,14 @@ World::BondEnergy World::compute_flat_joints(double dt) {
                 const int l = count++;
                 which[slot] = static_cast<std::int8_t>(l);
                 const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-                set_lane(L.xa, l, particles_.position[i]);
-                set_lane(L.xb, l, particles_.position[j]);
-                set_lane(L.va, l, particles_.velocity[i]);
-                set_lane(L.vb, l, particles_.velocity[j]);
-                set_lane(L.wa, l, particles_.spin[i]);
-                set_lane(L.wb, l, particles_.spin[j]);
-                L.ra[l] = particles_.radius[i];
-                L.rb[l] = particles_.radius[j];
+                set_lane(L.xa, l, particles.position[i]);
+                set_lane(L.xb, l, particles.position[j]);
+                set_lane(L.va, l, particles.velocity[i]);
+                set_lane(L.vb, l, particles.velocity[j]);
+                set_lane(L.wa, l, particles.spin[i]);
+                set_lane(L.wb, l, particles.spin[j]);
+                L.ra[l] = particles.radius[i];
+                L.rb[l] = particles.radius[j];
                 set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});
                 set_lane(L.bend, l, {side[bend], side[bend + 1], side[bend + 2]});
                 L.twist[l] = side[twist];
@@ -303,7 +313,7 @@ World::BondEnergy World::compute_flat_joints(double dt) {
                     L.shear[el][0][l] = p[1];
                     L.shear[el][1][l] = p[2];
                 }
-                const BondConstants& bc = bond_const_[static_cast<std::size_t>(k)];
+                const BondConstants& bc = constants[static_cast<std::size_t>(k)];
                 L.radius[l] = bc.radius;
                 L.kn[l] = bc.stiffness.normal;
                 L.ks[l] = bc.stiffness.shear;
@@ -318,12 +328,12 @@ World::BondEnergy World::compute_flat_joints(double dt) {
             for (std::int64_t k = b0; k < b1; ++k) {
                 const int l = which[static_cast<std::size_t>(k - b0)];
                 if (l >= 0 && L.fails[l] == 0.0) store_lane(k, l);
-                else if (bond_acts(bonds_[static_cast<std::size_t>(k)])) scalar_joint(k);
+                else if (bond_acts(bonds[static_cast<std::size_t>(k)])) scalar_joint(k);
             }
         }
         partial[static_cast<std::size_t>(blk)] = e;
     });
-    for (auto& list : broken) breaks_.insert(breaks_.end(), list.begin(), list.end());
+    for (auto& list : broken) pass.breaks.insert(pass.breaks.end(), list.begin(), list.end());
     return ordered_sum(partial);
 }
 

@@ -77,7 +77,7 @@ void read_genesis(Context& ctx, const toml::table& root, CubeConfig& c) {
     s.finish();
 }
 
-// The bond model: "parallel_bond" (default), "soft_bond" or "flat_joint".
+// The bond model: one of bond_model_names() (core/bond_models.hpp), parallel_bond by default.
 BondModel read_bond_model(Section& s, Context& ctx) {
     std::string name = bond_model_name(BondModel::parallel_bond);
     s.text("model", name);

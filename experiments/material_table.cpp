@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "experiments/cube_test.hpp"
@@ -43,14 +44,9 @@ using M = MaterialParams;
 using C = ContactParams;
 using B = BondParams;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr Range positive{0.0, kInf, true, false};       // > 0
-constexpr Range non_negative{0.0, kInf, false, false};  // >= 0
-constexpr Range unit_open_right{0.0, 1.0, false, true}; // in [0, 1)
-constexpr Range unit_closed{0.0, 1.0, false, false};    // in [0, 1]
-
-constexpr ModelSet kSoftBond = model_bit(BondModel::soft_bond);
-constexpr ModelSet kFlatJoint = model_bit(BondModel::flat_joint);
+using ranges::non_negative;
+using ranges::positive;
+using ranges::unit_open_right;
 
 double cv_of(double std_dev, double mean) { return mean > 0.0 ? std_dev / mean : 0.0; }
 
@@ -77,7 +73,7 @@ void strength_cv_set(M& m, double v) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 // clang-format off
-const std::array kTable = {
+const std::array kCommonRows = {
     // ---- every bond model: the linear contact, the bond's shared parameters, the specimen ----
     MaterialParameter{.key = "effective_modulus_gpa", .unit = "GPa",
         .description = "E*, contact modulus (calibration: E* and the bond modulus together)",
@@ -187,88 +183,96 @@ const std::array kTable = {
         .get_int = int_get<&M::bond, &B::seed>, .set_int = int_set<&M::bond, &B::seed>,
         .si_group = "bond", .si_name = "seed",
         .range = non_negative},
-    // ---- soft bond (docs/bond_laws.md "Soft bond") ----
-    MaterialParameter{.key = "softening_factor", .unit = "-",
-        .description = "zeta, softening slope / bond normal stiffness (soft_bond)", .models = kSoftBond,
-        .get = si_get<&M::bond, &B::soft, &SoftBondParams::softening_factor>,
-        .set = si_set<&M::bond, &B::soft, &SoftBondParams::softening_factor>,
-        .si_group = "soft_bond", .si_name = "softening_factor", .core_field = "SoftBondParams::softening_factor",
-        .range = positive,
-        .calibration = Calibration::free, .lower = 0.05, .upper = 1.0, .log_scale = true},
-    MaterialParameter{.key = "cut_fraction", .unit = "-",
-        .description = "gamma, the bond breaks once its softened stress <= gamma x sigma-bar_c (soft_bond)", .models = kSoftBond,
-        .get = si_get<&M::bond, &B::soft, &SoftBondParams::cut_fraction>,
-        .set = si_set<&M::bond, &B::soft, &SoftBondParams::cut_fraction>,
-        .si_group = "soft_bond", .si_name = "cut_fraction", .core_field = "SoftBondParams::cut_fraction",
-        .range = unit_open_right,
-        .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
-    // ---- soft bond and flat joint: one spring set (docs/bond_laws.md) ----
+};
+
+// Rows of a field BondParams shares but only some laws use: each goes right after the rows of
+// the first law it applies to (the order the ledger's material keys were written in).
+const std::array kPartlySharedRows = {
     MaterialParameter{.key = "bond_replaces_contact", .unit = "-",
         .description = "true: while intact the bond replaces the linear contact (PFC softbond/flatjoint, one spring set); "
-                       "false: bond and contact in parallel (soft_bond, flat_joint)",
-        .models = kSoftBond | kFlatJoint, .integer = true, .flag = true,
+                       "false: bond and contact in parallel (every law but the parallel bond)",
+        .models = kEveryModel & ~model_bit(BondModel::parallel_bond), .integer = true, .flag = true,
         .get = si_get<&M::bond, &B::replaces_contact>, .set = si_set<&M::bond, &B::replaces_contact>,
         .get_int = int_get<&M::bond, &B::replaces_contact>, .set_int = int_set<&M::bond, &B::replaces_contact>,
         .si_group = "bond", .si_name = "replaces_contact", .core_field = "BondParams::replaces_contact",
         .range = {0.0, 1.0, false, false}, .calibration = Calibration::fixed_only, .lower = 0.0, .upper = 1.0},
-    // ---- flat joint (docs/bond_laws.md "Flat joint") ----
-    MaterialParameter{.key = "radial_elements", .unit = "-", .description = "N_r, elements across the joint radius (flat_joint)",
-        .models = kFlatJoint, .integer = true,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::radial_elements>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::radial_elements>,
-        .get_int = int_get<&M::bond, &B::flat, &FlatJointParams::radial_elements>,
-        .set_int = int_set<&M::bond, &B::flat, &FlatJointParams::radial_elements>,
-        .si_group = "flat_joint", .si_name = "radial_elements", .core_field = "FlatJointParams::radial_elements",
-        .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0},
-    MaterialParameter{.key = "angular_elements", .unit = "-", .description = "N_alpha, elements around the joint (flat_joint)",
-        .models = kFlatJoint, .integer = true,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::angular_elements>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::angular_elements>,
-        .get_int = int_get<&M::bond, &B::flat, &FlatJointParams::angular_elements>,
-        .set_int = int_set<&M::bond, &B::flat, &FlatJointParams::angular_elements>,
-        .si_group = "flat_joint", .si_name = "angular_elements", .core_field = "FlatJointParams::angular_elements",
-        .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0},
-    MaterialParameter{.key = "residual_friction", .unit = "-",
-        .description = "mu of a broken joint element (flat_joint)", .models = kFlatJoint,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::residual_friction>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::residual_friction>,
-        .si_group = "flat_joint", .si_name = "residual_friction", .core_field = "FlatJointParams::residual_friction",
-        .range = non_negative,
-        .calibration = Calibration::free, .lower = 0.2, .upper = 1.0},
-    MaterialParameter{.key = "bonded_fraction", .unit = "-",
-        .description = "phi_B, fraction of joints installed bonded (flat_joint; the rest gapped or slit)",
-        .models = kFlatJoint,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::bonded_fraction>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::bonded_fraction>,
-        .si_group = "flat_joint", .si_name = "bonded_fraction", .core_field = "FlatJointParams::bonded_fraction",
-        .range = unit_closed, .calibration = Calibration::free, .lower = 0.3, .upper = 1.0},
-    MaterialParameter{.key = "gapped_fraction", .unit = "-",
-        .description = "phi_G, fraction of joints installed unbonded with an initial gap (flat_joint; slit = 1 - phi_B - phi_G)",
-        .models = kFlatJoint,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::gapped_fraction>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::gapped_fraction>,
-        .si_group = "flat_joint", .si_name = "gapped_fraction", .core_field = "FlatJointParams::gapped_fraction",
-        .range = unit_closed, .calibration = Calibration::free, .lower = 0.0, .upper = 0.5},
-    MaterialParameter{.key = "gap_ratio", .unit = "-",
-        .description = "g_0 / joint radius, the initial gap of a gapped joint (flat_joint)",
-        .models = kFlatJoint,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::gap_ratio>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::gap_ratio>,
-        .si_group = "flat_joint", .si_name = "gap_ratio", .core_field = "FlatJointParams::gap_ratio",
-        .range = non_negative, .calibration = Calibration::free, .lower = 0.0, .upper = 0.05},
-    MaterialParameter{.key = "stiffness_over_gap", .unit = "-",
-        .description = "true: a joint installed across a gap g has k_n = E*/(R_A + R_B + g) (a bridge as long as the "
-                       "centre distance); false: E*/(R_A + R_B) (flat_joint)",
-        .models = kFlatJoint, .integer = true, .flag = true,
-        .get = si_get<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
-        .set = si_set<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
-        .get_int = int_get<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
-        .set_int = int_set<&M::bond, &B::flat, &FlatJointParams::stiffness_over_gap>,
-        .si_group = "flat_joint", .si_name = "stiffness_over_gap", .core_field = "FlatJointParams::stiffness_over_gap",
-        .range = {0.0, 1.0, false, false}, .calibration = Calibration::fixed_only, .lower = 0.0, .upper = 1.0},
 };
 // clang-format on
 #pragma GCC diagnostic pop
+
+// --- a law's rows (Law::kParameters, core/<law>_law.hpp) as material-table rows ---------------
+
+template <class Law, std::size_t I>
+double law_row_get(const MaterialParams& m) {
+    return Law::kParameters[I].field.get(m.bond.law<Law>());
+}
+template <class Law, std::size_t I>
+void law_row_set(MaterialParams& m, double v) {
+    Law::kParameters[I].field.set(m.bond.law<Law>(), v);
+}
+template <class Law, std::size_t I>
+std::int64_t law_row_get_int(const MaterialParams& m) {
+    return Law::kParameters[I].field.get_int(m.bond.law<Law>());
+}
+template <class Law, std::size_t I>
+void law_row_set_int(MaterialParams& m, std::int64_t v) {
+    Law::kParameters[I].field.set_int(m.bond.law<Law>(), v);
+}
+
+template <class Law, std::size_t I>
+MaterialParameter law_row() {
+    constexpr auto& row = Law::kParameters[I];
+    MaterialParameter p;
+    p.key = row.key;
+    p.unit = row.unit;
+    p.description = row.description;
+    p.models = model_bit(bond_model_of<Law>);
+    p.integer = row.field.integer;
+    p.flag = row.field.flag;
+    p.to_si = row.to_si;
+    p.get = law_row_get<Law, I>;
+    p.set = law_row_set<Law, I>;
+    if (row.field.integer) {
+        p.get_int = law_row_get_int<Law, I>;
+        p.set_int = law_row_set_int<Law, I>;
+    }
+    p.si_group = bond_model_name(bond_model_of<Law>);
+    p.si_name = row.key;
+    p.core_field = row.core_field;
+    p.range = row.range;
+    p.calibration = row.calibration;
+    p.role = row.role;
+    p.lower = row.lower;
+    p.upper = row.upper;
+    p.log_scale = row.log_scale;
+    return p;
+}
+
+template <class Law>
+void append_law_rows(std::vector<MaterialParameter>& table) {
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+        (table.push_back(law_row<Law, I>()), ...);
+    }(std::make_index_sequence<Law::kParameters.size()>{});
+}
+
+/// The common rows, then each law's rows in BondModel order (with the partly shared rows).
+const std::vector<MaterialParameter>& table_rows() {
+    static const std::vector<MaterialParameter> rows = [] {
+        std::vector<MaterialParameter> out(kCommonRows.begin(), kCommonRows.end());
+        std::vector<bool> placed(kPartlySharedRows.size(), false);
+        for_each_bond_law([&](auto kernel) {
+            using Law = decltype(kernel);
+            append_law_rows<Law>(out);
+            for (std::size_t k = 0; k < kPartlySharedRows.size(); ++k)
+                if (!placed[k] && kPartlySharedRows[k].applies_to(bond_model_of<Law>)) {
+                    out.push_back(kPartlySharedRows[k]);
+                    placed[k] = true;
+                }
+        });
+        return out;
+    }();
+    return rows;
+}
 
 std::string show(double v) {
     std::ostringstream out;
@@ -279,7 +283,7 @@ std::string show(double v) {
 /// Sets a row's SI value; the coefficients of variation of rows that are its cv keep their value.
 void set_keeping_cv(const MaterialParameter& p, MaterialParams& m, double si) {
     std::vector<std::pair<const MaterialParameter*, double>> cvs;
-    for (const MaterialParameter& q : kTable)
+    for (const MaterialParameter& q : table_rows())
         if (q.cv_of == p.key) cvs.emplace_back(&q, config_value(q, m));
     p.set(m, si);
     for (const auto& [q, cv] : cvs) set_config_value(*q, m, cv);
@@ -287,23 +291,10 @@ void set_keeping_cv(const MaterialParameter& p, MaterialParams& m, double si) {
 
 }  // namespace
 
-bool Range::contains(double v) const {
-    if (!std::isfinite(v)) return false;
-    if (lower_open ? !(v > lower) : !(v >= lower)) return false;
-    if (upper_open ? !(v < upper) : !(v <= upper)) return false;
-    return true;
-}
-
-std::string Range::rule() const {
-    if (std::isinf(upper)) return std::string(lower_open ? "> " : ">= ") + show(lower);
-    if (std::isinf(lower)) return std::string(upper_open ? "< " : "<= ") + show(upper);
-    return std::string("in ") + (lower_open ? "(" : "[") + show(lower) + ", " + show(upper) + (upper_open ? ")" : "]");
-}
-
-std::span<const MaterialParameter> material_table() { return kTable; }
+std::span<const MaterialParameter> material_table() { return table_rows(); }
 
 const MaterialParameter* find_material_parameter(std::string_view key) {
-    for (const MaterialParameter& p : kTable)
+    for (const MaterialParameter& p : table_rows())
         if (p.key == key) return &p;
     return nullptr;
 }
@@ -311,7 +302,7 @@ const MaterialParameter* find_material_parameter(std::string_view key) {
 const MaterialParameter* material_parameter_of_field(std::string_view field) {
     constexpr std::string_view prefix = "material.";
     if (field.starts_with(prefix)) return find_material_parameter(field.substr(prefix.size()));
-    for (const MaterialParameter& p : kTable)
+    for (const MaterialParameter& p : table_rows())
         if (!p.core_field.empty() && p.core_field == field) return &p;
     return nullptr;
 }
@@ -333,14 +324,14 @@ void apply_calibration_value(const MaterialParameter& p, MaterialParams& m, doub
     const double before = p.get(m);
     set_keeping_cv(p, m, p.cv_of.empty() ? value * p.to_si : value * find_material_parameter(p.cv_of)->get(m));
     const double after = p.get(m);
-    for (const MaterialParameter& q : kTable) {
+    for (const MaterialParameter& q : table_rows()) {
         if (q.follows == p.key) set_keeping_cv(q, m, after);
         if (q.scales_with == p.key && before > 0.0) set_keeping_cv(q, m, q.get(m) / before * after);
     }
 }
 
 std::optional<std::string> material_range_violation(const MaterialParams& m) {
-    for (const MaterialParameter& p : kTable) {
+    for (const MaterialParameter& p : table_rows()) {
         if (!p.in_config || !p.applies_to(m.bond.model)) continue;
         const double v = p.integer ? static_cast<double>(p.get_int(m)) : config_value(p, m);
         if (!p.range.contains(v))
@@ -352,11 +343,7 @@ std::optional<std::string> material_range_violation(const MaterialParams& m) {
 const std::vector<BondModel>& bond_models() {
     static const std::vector<BondModel> models = [] {
         std::vector<BondModel> out;
-        for (unsigned k = 0; k < 32; ++k) {
-            const auto m = static_cast<BondModel>(k);
-            if (parse_bond_model(bond_model_name(m)) != m) break;  // past the last law core names
-            out.push_back(m);
-        }
+        for_each_bond_law([&](auto kernel) { out.push_back(bond_model_of<decltype(kernel)>); });
         return out;
     }();
     return models;

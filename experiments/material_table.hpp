@@ -9,8 +9,10 @@
 //   - the calibration (parameter names, units, roles, default bounds and scale, how a value is
 //     applied; the ledger's material key)                        calibrate/parameters.cpp,
 //                                                                 calibrate/cube_model.cpp
-// A new bond law adds its param struct to core/params.hpp, its kernel to core/ and its rows
-// here (models = that law); nothing else in experiments/ or calibrate/ changes.
+// The rows of every bond model come first, written out below; each bond law's own rows are
+// appended from its header (Law::kParameters, core/law_parameters.hpp) with models = that law
+// and si_group = its name (core/bond_models.hpp): a new law changes nothing in experiments/ or
+// calibrate/.
 //
 // The row order is the order in which the calibration applies parameters (a strength mean
 // before the cohesion ratio before the scatter), and the order of the config's keys in
@@ -23,38 +25,23 @@
 #include <string_view>
 #include <vector>
 
+#include "core/law_parameters.hpp"
 #include "core/params.hpp"
 
 namespace gradem::exp {
 
 struct MaterialParams;
 
-/// What the calibration does with a parameter (docs/calibration.md "Homogeneity"): the homogeneity acts on the
-/// stiffness and strength scales; shape parameters are dimensionless.
-enum class ParameterRole : std::uint8_t { stiffness_scale, strength_scale, shape };
+using gradem::Calibration;    // what the calibration may do with a row (core/law_parameters.hpp)
+using gradem::ParameterRole;  // stiffness scale, strength scale or shape
+using gradem::Range;          // allowed values in config units
 
 /// The bond models a row applies to (a bit set over BondModel).
 using ModelSet = std::uint32_t;
 constexpr ModelSet model_bit(BondModel m) { return ModelSet{1} << static_cast<unsigned>(m); }
 constexpr ModelSet kEveryModel = ~ModelSet{0};  ///< a row every bond model uses
-/// Every BondModel core knows (those bond_model_name() names), in enum order: a new law in
-/// core/params.hpp appears here without an edit.
+/// Every BondModel core knows (the rows of core/bond_models.hpp), in enum order.
 const std::vector<BondModel>& bond_models();
-
-/// Allowed values in config units: lower/upper bounds (infinite = none), each open or closed.
-struct Range {
-    double lower = -std::numeric_limits<double>::infinity(), upper = std::numeric_limits<double>::infinity();
-    bool lower_open = false, upper_open = false;
-    [[nodiscard]] bool contains(double v) const;
-    [[nodiscard]] std::string rule() const;  ///< "> 0", ">= 0", "in (0, 1]", ...
-};
-
-/// How the calibration may use a row.
-enum class Calibration : std::uint8_t {
-    none,        ///< not a calibration parameter (set in the base cube config only)
-    free,        ///< a calibration parameter: fixed or free in [parameters.<key>]
-    fixed_only,  ///< integer parameter: may be fixed in [parameters.<key>], never free
-};
 
 struct MaterialParameter {
     std::string_view key;          ///< [material] config key = calibration parameter name
@@ -73,7 +60,7 @@ struct MaterialParameter {
     void (*set)(MaterialParams&, double) = nullptr;   ///< sets the SI value (derived rows: config value)
     std::int64_t (*get_int)(const MaterialParams&) = nullptr;  ///< integer rows: exact value
     void (*set_int)(MaterialParams&, std::int64_t) = nullptr;  ///< integer rows: sets it (range checked first)
-    std::string_view si_group;     ///< macro.json "si" sub-object ("contact", "bond", "soft_bond", ...; "" top level)
+    std::string_view si_group;     ///< macro.json "si" sub-object ("contact", "bond", a law's name; "" top level)
     std::string_view si_name;      ///< its key there (with the SI unit)
     std::string_view core_field;   ///< how core/params.cpp's validators name it ("BondParams::friction_angle_deg")
 
@@ -111,9 +98,9 @@ void apply_calibration_value(const MaterialParameter& p, MaterialParams& m, doub
 /// "material.<key> = <config value> violates <rule>"; nullopt when every row is in range.
 std::optional<std::string> material_range_violation(const MaterialParams& m);
 
-/// "parallel_bond, soft_bond, flat_joint" (the names a model key accepts).
+/// Every model's name, comma separated (the names a model key accepts).
 std::string bond_model_names();
-/// The names of the models in a set, "soft_bond" or "soft_bond, flat_joint".
+/// The names of the models in a set, comma separated.
 std::string model_names(ModelSet models);
 
 }  // namespace gradem::exp

@@ -284,8 +284,8 @@ static fs::path soft_twin_problem(const fs::path& dir, const cal::CubeModel& mod
                                   const std::string& parameter_keys = "") {
     exp::MaterialParams truth = material_at(kTruth);
     truth.bond.model = BondModel::soft_bond;
-    truth.bond.soft.softening_factor = 0.25;
-    truth.bond.soft.cut_fraction = 0.2;
+    truth.bond.law<SoftBondLaw>().softening_factor = 0.25;
+    truth.bond.law<SoftBondLaw>().cut_fraction = 0.2;
     std::vector<std::uint64_t> seeds;
     for (std::uint64_t s = 101; s <= 110; ++s) seeds.push_back(s);
     test::write_text(dir / "lab_results.json", test::synthetic_lab_results(model, kSands, truth, seeds).dump(1));

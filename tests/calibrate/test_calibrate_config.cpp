@@ -205,22 +205,22 @@ TEST_CASE("bond model of a calibration: chosen, its parameters checked, part of 
         x[*mu] = 0.35;
         const exp::MaterialParams m = space.material(x);
         CHECK(m.bond.model == BondModel::flat_joint);
-        CHECK(m.bond.flat.radial_elements == 2);
-        CHECK(m.bond.flat.angular_elements == 3);
-        CHECK(m.bond.flat.residual_friction == 0.35);
+        CHECK(m.bond.law<FlatJointLaw>().radial_elements == 2);
+        CHECK(m.bond.law<FlatJointLaw>().angular_elements == 3);
+        CHECK(m.bond.law<FlatJointLaw>().residual_friction == 0.35);
     }
     SECTION("ledger keys: a parallel-bond key is unchanged, another model's names the model and its parameters") {
         exp::MaterialParams pb = exp::load_cube_config(test::calibration_base_config()).material;
         const std::string pb_key = cal::material_key(pb);
         CHECK(pb_key.find("model") == std::string::npos);
-        pb.bond.soft.softening_factor = 0.77;  // not the parallel bond's: no effect on its runs or key
+        pb.bond.law<SoftBondLaw>().softening_factor = 0.77;  // not the parallel bond's: no effect on its runs or key
         CHECK(cal::material_key(pb) == pb_key);
         exp::MaterialParams soft = pb;
         soft.bond.model = BondModel::soft_bond;
         const std::string soft_key = cal::material_key(soft);
         CHECK(soft_key.rfind(pb_key, 0) == 0);
         CHECK_THAT(soft_key, Contains(" model=soft_bond softening_factor=") && Contains(" cut_fraction="));
-        soft.bond.soft.softening_factor = std::nextafter(0.77, 1.0);
+        soft.bond.law<SoftBondLaw>().softening_factor = std::nextafter(0.77, 1.0);
         CHECK(cal::material_key(soft) != soft_key);  // exact: the last bit counts
         exp::MaterialParams flat = pb;
         flat.bond.model = BondModel::flat_joint;

@@ -32,14 +32,41 @@ exp::MaterialParams odd_material() {
     for (double* x : {&m.contact.effective_modulus, &m.contact.stiffness_ratio, &m.contact.friction, &m.bond.effective_modulus,
                       &m.bond.stiffness_ratio, &m.bond.radius_multiplier, &m.bond.moment_factor, &m.bond.tensile_strength_mean,
                       &m.bond.tensile_strength_std, &m.bond.cohesion_mean, &m.bond.cohesion_std, &m.bond.friction_angle_deg,
-                      &m.bond.soft.softening_factor, &m.bond.soft.cut_fraction, &m.bond.flat.residual_friction, &m.bond_gap_fraction,
-                      &m.bond_gap_absolute, &m.platen_friction, &m.damping})
+                      &m.bond_gap_fraction, &m.bond_gap_absolute, &m.platen_friction, &m.damping})
         *x = (v += 0.1) / 3.0;  // not exactly representable in decimal: bits matter
     m.bond.seed = 0xDEADBEEFCAFEull;
     m.bond.model = BondModel::flat_joint;
-    m.bond.flat.radial_elements = 3;
-    m.bond.flat.angular_elements = 7;
+    m.bond.replaces_contact = !m.bond.replaces_contact;
+    // every row of every law: doubles as above, counts distinct, yes/no flipped
+    std::int64_t count = 3;
+    for_each_bond_law([&](auto kernel) {
+        using Law = decltype(kernel);
+        for (const auto& row : Law::kParameters) {
+            auto& own = m.bond.law<Law>();
+            if (row.field.flag) row.field.set_int(own, 1 - row.field.get_int(own));
+            else if (row.field.integer) row.field.set_int(own, count += 4);
+            else row.field.set(own, (v += 0.1) / 3.0);
+        }
+    });
     return m;
+}
+
+/// Every row of every law holds the same bits in a and b; the number of rows compared.
+std::size_t same_law_rows(const exp::MaterialParams& a, const exp::MaterialParams& b) {
+    std::size_t rows = 0;
+    for_each_bond_law([&](auto kernel) {
+        using Law = decltype(kernel);
+        for (const auto& row : Law::kParameters) {
+            INFO(bond_model_name(bond_model_of<Law>) << " row " << row.key);
+            if (row.field.integer) CHECK(row.field.get_int(b.bond.law<Law>()) == row.field.get_int(a.bond.law<Law>()));
+            else {
+                const double x = row.field.get(a.bond.law<Law>()), y = row.field.get(b.bond.law<Law>());
+                CHECK(std::memcmp(&x, &y, sizeof x) == 0);
+            }
+            ++rows;
+        }
+    });
+    return rows;
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -63,11 +90,10 @@ TEST_CASE("run request round trip keeps every material field bit for bit", "[cal
     CHECK(cal::material_key(a) == cal::material_key(b));  // every field material_key knows, as hex floats
     CHECK(b.bond.model == BondModel::flat_joint);
     CHECK(b.bond.seed == a.bond.seed);
-    CHECK(same_bits(b.bond.soft.softening_factor, a.bond.soft.softening_factor));
-    CHECK(same_bits(b.bond.soft.cut_fraction, a.bond.soft.cut_fraction));
-    CHECK(b.bond.flat.radial_elements == 3);
-    CHECK(b.bond.flat.angular_elements == 7);
-    CHECK(same_bits(b.bond.flat.residual_friction, a.bond.flat.residual_friction));
+    CHECK(b.bond.replaces_contact == a.bond.replaces_contact);
+    CHECK(same_law_rows(a, b) >= 9);  // the soft bond's 2 rows and the flat joint's 7, at least
+    CHECK(b.bond.law<FlatJointLaw>().radial_elements != FlatJointParams{}.radial_elements);
+    CHECK(same_bits(b.bond.law<SoftBondLaw>().cut_fraction, a.bond.law<SoftBondLaw>().cut_fraction));
 }
 
 TEST_CASE("material keys tell bond laws apart and keep parallel-bond keys as before", "[calibrate][executor]") {
@@ -77,7 +103,7 @@ TEST_CASE("material keys tell bond laws apart and keep parallel-bond keys as bef
     CHECK(parallel.find("law=") == std::string::npos);  // the key text of ledgers written before the other laws
     m.bond.model = BondModel::soft_bond;
     const std::string soft = cal::material_key(m);
-    m.bond.soft.cut_fraction *= 2.0;
+    m.bond.law<SoftBondLaw>().cut_fraction *= 2.0;
     CHECK(soft != parallel);
     CHECK(cal::material_key(m) != soft);
 }

@@ -25,9 +25,9 @@ inline BondParams rig_bond(BondModel model) {
 /// A flat joint of N_r x N_α elements on the rig's stiffness, residual friction 0.5.
 inline BondParams joint(std::int32_t nr, std::int32_t na) {
     BondParams bp = rig_bond(BondModel::flat_joint);
-    bp.flat.radial_elements = nr;
-    bp.flat.angular_elements = na;
-    bp.flat.residual_friction = 0.5;
+    bp.law<FlatJointLaw>().radial_elements = nr;
+    bp.law<FlatJointLaw>().angular_elements = na;
+    bp.law<FlatJointLaw>().residual_friction = 0.5;
     return bp;
 }
 

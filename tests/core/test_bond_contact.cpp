@@ -26,10 +26,10 @@ BondParams one_spring_set(BondModel model, bool replaces) {
     bp.replaces_contact = replaces;
     bp.tensile_strength_mean = kStrength;
     bp.cohesion_mean = 1.0e12;  // no shear break
-    bp.soft.softening_factor = 1.0;
-    bp.soft.cut_fraction = 0.0;
-    bp.flat.radial_elements = 2;
-    bp.flat.angular_elements = 3;
+    bp.law<SoftBondLaw>().softening_factor = 1.0;
+    bp.law<SoftBondLaw>().cut_fraction = 0.0;
+    bp.law<FlatJointLaw>().radial_elements = 2;
+    bp.law<FlatJointLaw>().angular_elements = 3;
     return bp;
 }
 

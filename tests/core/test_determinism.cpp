@@ -28,10 +28,10 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
     bp.cohesion_std = 0.5e6;
     bp.model = model;
     if (mixed_joints) {  // flat joints of every type, across gaps, with a friction angle
-        bp.flat.bonded_fraction = 0.6;
-        bp.flat.gapped_fraction = 0.2;
-        bp.flat.gap_ratio = 0.01;
-        bp.flat.stiffness_over_gap = true;
+        bp.law<FlatJointLaw>().bonded_fraction = 0.6;
+        bp.law<FlatJointLaw>().gapped_fraction = 0.2;
+        bp.law<FlatJointLaw>().gap_ratio = 0.01;
+        bp.law<FlatJointLaw>().stiffness_over_gap = true;
         bp.friction_angle_deg = 25.0;
     }
     world.install_bonds(bp, 0.5e-3);
@@ -106,7 +106,7 @@ TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[c
     for (const bool mixed : {false, true}) {
         INFO((mixed ? "bonded, gapped and slit" : "bonded"));
         SimParams scalar;
-        scalar.vectorised_flat_joints = false;
+        scalar.vectorised_bond_passes = false;
         std::size_t b_vec = 0, b_scalar = 0;
         EnergyLedger e_vec, e_scalar;
         const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec);

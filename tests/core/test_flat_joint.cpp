@@ -164,7 +164,7 @@ double cluster_balance(double dt_fraction, int steps, std::size_t& breaks, FlatJ
     bp.effective_modulus = 1.0e9;
     bp.tensile_strength_mean = 2.0e6;
     bp.cohesion_mean = 4.0e6;
-    bp.flat = flat;
+    bp.law<FlatJointLaw>() = flat;
     world.install_bonds(bp, 0.5e-3);
     add_platens(world, 0.05, 0.3);
     world.set_time_step(dt_fraction * world.critical_time_step());

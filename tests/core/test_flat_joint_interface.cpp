@@ -14,7 +14,7 @@ namespace {
 
 BondParams slit_joint(std::int32_t nr, std::int32_t na) {
     BondParams bp = joint(nr, na);
-    bp.flat.bonded_fraction = 0.0;
+    bp.law<FlatJointLaw>().bonded_fraction = 0.0;
     return bp;
 }
 
@@ -119,11 +119,11 @@ TEST_CASE("flat joint: an unbonded joint resists bending through its compressed 
 // F_n = k_n A (δ + g_0): the hand solution of a uniform press.
 TEST_CASE("flat joint: a gapped joint carries nothing until its initial gap closes", "[core][flat_joint]") {
     BondParams bp = joint(1, 4);
-    bp.flat.bonded_fraction = 0.0;
-    bp.flat.gapped_fraction = 1.0;
-    bp.flat.gap_ratio = 2.0e-3;
+    bp.law<FlatJointLaw>().bonded_fraction = 0.0;
+    bp.law<FlatJointLaw>().gapped_fraction = 1.0;
+    bp.law<FlatJointLaw>().gap_ratio = 2.0e-3;
     BondRig rig(bp);
-    const double g0 = bp.flat.gap_ratio * rig.section.radius;
+    const double g0 = bp.law<FlatJointLaw>().gap_ratio * rig.section.radius;
     REQUIRE(rig.world.bond_side_state(0)[flat_side::initial_gap] == Approx(g0).epsilon(1e-12));
     REQUIRE(flat_joint_type(rig.world.bond_side_state(0)) == FlatJointType::gapped);
     const double per_step = 3.0 * g0 / 3000.0;
@@ -189,7 +189,7 @@ TEST_CASE("flat joint: a joint installed across a gap has the stiffness of a bri
     for (bool over_gap : {false, true}) {
         INFO("stiffness_over_gap " << over_gap);
         BondParams bp = joint(1, 4);
-        bp.flat.stiffness_over_gap = over_gap;
+        bp.law<FlatJointLaw>().stiffness_over_gap = over_gap;
         BondRig rig(bp, gap);
         rig.world.step();
         CHECK(rig.bond().normal_force == 0.0);
@@ -206,9 +206,9 @@ TEST_CASE("flat joint: a joint installed across a gap has the stiffness of a bri
 // on a second installation, and slit and gapped joints act as interfaces from the start.
 TEST_CASE("flat joint: bonded, gapped and slit joints come out in the stated fractions", "[core][flat_joint]") {
     BondParams bp = joint(1, 3);
-    bp.flat.bonded_fraction = 0.55;
-    bp.flat.gapped_fraction = 0.25;
-    bp.flat.gap_ratio = 0.02;
+    bp.law<FlatJointLaw>().bonded_fraction = 0.55;
+    bp.law<FlatJointLaw>().gapped_fraction = 0.25;
+    bp.law<FlatJointLaw>().gap_ratio = 0.02;
     auto install = [&]() {
         World world(jittered_cluster(14, 1.0e-3, 7), frictionless(1.0e9), SimParams{});
         world.install_bonds(bp, 0.5e-3);

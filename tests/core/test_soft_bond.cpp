@@ -20,8 +20,8 @@ constexpr double kZeta = 0.5, kGamma = 0.2;
 BondParams soft_params() {
     BondParams bp = rig_bond(BondModel::soft_bond);
     bp.tensile_strength_mean = kStrength;
-    bp.soft.softening_factor = kZeta;
-    bp.soft.cut_fraction = kGamma;
+    bp.law<SoftBondLaw>().softening_factor = kZeta;
+    bp.law<SoftBondLaw>().cut_fraction = kGamma;
     return bp;
 }
 
@@ -190,7 +190,7 @@ TEST_CASE("soft bonds: damped, frictional compression between platens closes the
     bp.effective_modulus = 1.0e9;
     bp.tensile_strength_mean = 1.0e6;
     bp.cohesion_mean = 2.0e6;
-    bp.soft = {0.3, 0.1};
+    bp.law<SoftBondLaw>() = {0.3, 0.1};
     world.install_bonds(bp, 0.5e-3);
     add_platens(world, 0.05, 0.3);
     world.run(20000);

@@ -252,8 +252,8 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
         const CubeConfig c = load_cube_config(write_file(dir.path / "s.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
                                                                        "model = \"soft_bond\"\nsoftening_factor = 0.4\ncut_fraction = 0.1\n"));
         CHECK(c.material.bond.model == BondModel::soft_bond);
-        CHECK(c.material.bond.soft.softening_factor == 0.4);
-        CHECK(c.material.bond.soft.cut_fraction == 0.1);
+        CHECK(c.material.bond.law<SoftBondLaw>().softening_factor == 0.4);
+        CHECK(c.material.bond.law<SoftBondLaw>().cut_fraction == 0.1);
         CHECK(c.material.bond.replaces_contact);  // the default: one spring set (PFC softbond)
         const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
         CHECK(j["display"]["model"] == "soft_bond");
@@ -268,9 +268,9 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
                                                                        "bond_replaces_contact = false\n"));
         CHECK(c.material.bond.model == BondModel::flat_joint);
         CHECK_FALSE(c.material.bond.replaces_contact);
-        CHECK(c.material.bond.flat.radial_elements == 2);
-        CHECK(c.material.bond.flat.angular_elements == 3);
-        CHECK(c.material.bond.flat.residual_friction == 0.6);
+        CHECK(c.material.bond.law<FlatJointLaw>().radial_elements == 2);
+        CHECK(c.material.bond.law<FlatJointLaw>().angular_elements == 3);
+        CHECK(c.material.bond.law<FlatJointLaw>().residual_friction == 0.6);
         const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
         CHECK(j["si"]["flat_joint"]["angular_elements"] == 3);
         CHECK_FALSE(j["display"].contains("softening_factor"));

@@ -1,0 +1,63 @@
+#pragma once
+// A bond law's own pass over every bond: a law may give a static
+//     BondPassEnergy compute_all(const BondPass& pass, double dt)
+// (declared in its header, defined in its own source file), and World::compute_bonds then calls
+// it instead of the generic loop over bonds (world_bonds.cpp, compute_bonds_with). The pass gets
+// the World's state by reference and must give the generic loop's results: each bond through
+// the law's kernel, its force and moment added into its pair's slot, breaks appended in bond
+// order, energies summed per block in bond order (so any thread count gives the same bits).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/bond_law.hpp"
+#include "core/params.hpp"
+#include "core/particles.hpp"
+#include "core/world_types.hpp"
+
+namespace gradem {
+
+/// What a pair exerts this step: force on j, moment on j; i gets -force and
+/// -torque_j - (x_j - x_i) x force (angular momentum balance).
+struct PairOutput {
+    Vec3 force_j, torque_j;
+};
+
+/// Per-bond constants (they depend only on the radii and BondParams): R̄, 1/R̄ and the
+/// stiffness, computed once instead of three divisions per bond and step (32 bytes; the
+/// rest of the section is rebuilt from R̄ and 1/R̄ by multiplications). Stale after a change
+/// of radii or bond parameters.
+struct BondConstants {
+    double radius = 0, inv_radius = 0;  ///< R̄ [m], 1/R̄ [1/m]
+    BondStiffness stiffness;
+};
+
+/// Energies of one bond phase [J]: stored after the step, released by breaks, dissipated by
+/// damage and by friction of broken elements.
+struct BondPassEnergy {
+    double stored = 0, released = 0, damage = 0, slip = 0;
+    BondPassEnergy& operator+=(const BondPassEnergy& o) {
+        stored += o.stored;
+        released += o.released;
+        damage += o.damage;
+        slip += o.slip;
+        return *this;
+    }
+};
+
+/// The World's state a law's own pass reads and writes (for one call).
+struct BondPass {
+    const ParticleSet& particles;
+    std::vector<ParallelBond>& bonds;
+    std::vector<double>& side;                     ///< per-bond law state, `stride` doubles each
+    std::size_t stride;
+    const std::vector<BondConstants>& constants;   ///< per bond
+    const std::vector<BondParams>& family_params;  ///< per ParallelBond::family_pair
+    std::vector<PairOutput>& pair_out;             ///< per pair slot (ParallelBond::slot): add into it
+    std::vector<BreakEvent>& breaks;               ///< append in bond order
+    const SimParams& sim;
+    std::int64_t step;
+    double time;  ///< [s]
+};
+
+}  // namespace gradem
