@@ -225,7 +225,7 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     plan.tension = problem.tension.fitted();
     plan.workers = problem.workers;
     plan.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const ExpectedRuns e = problem.model == "analytic" ? ExpectedRuns{} : expected_runs(problem);
+    const ExpectedRuns e = expected_runs(problem);
     plan.expected_runs = e.fitted;
     plan.expected_evaluations = e.evaluations;
     plan.validation_runs = e.validation;
