@@ -10,16 +10,6 @@
 namespace gradem::cal {
 namespace {
 
-/// Max relative standard error of the seed mean over the evaluated sands, by quantity.
-void measure_noise(const Evaluation& e, double out[kQuantityCount]) {
-    for (const SandOutcome& s : e.sands)
-        for (Quantity q : {Quantity::modulus, Quantity::peak, Quantity::strain, Quantity::tension}) {
-            const int k = static_cast<int>(q);
-            if (s.count(q) > 1 && std::isfinite(s.std[k]) && s.mean[k] != 0.0)
-                out[k] = std::max(out[k], std::fabs(s.std[k] / s.mean[k]) / std::sqrt(static_cast<double>(s.count(q))));
-        }
-}
-
 CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterSpace& space, Evaluator& evaluator,
                              std::string label, std::vector<std::size_t> fitted,
                              const std::function<void(const std::string&)>& log) {
@@ -44,6 +34,12 @@ const SandOutcome* CalibrationStage::outcome(std::size_t sand) const {
     for (const auto* e : {&solution.best_eval, &prediction})
         for (const SandOutcome& s : e->sands)
             if (s.sand == sand) return &s;
+    return nullptr;
+}
+
+const SandOutcome* CalibrationStage::scaled_outcome(std::size_t sand) const {
+    for (const SandOutcome& s : scale_up.prediction.sands)
+        if (s.sand == sand) return &s;
     return nullptr;
 }
 
@@ -76,10 +72,13 @@ std::unique_ptr<CubeModel> make_specimen_model(const CalibrationProblem& problem
 }  // namespace
 
 std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, bool tension) {
-    if (!problem.validation.enabled()) return make_specimen_model(problem, tension);
-    return std::make_unique<ValidatedModel>(make_specimen_model(problem, tension),
-                                            make_specimen_model(validation_problem(problem), tension), problem.sands.size(),
-                                            problem.validation.seeds);
+    if (!problem.scale_up.enabled() && !problem.validation.enabled()) return make_specimen_model(problem, tension);
+    auto model = std::make_unique<ValidatedModel>(make_specimen_model(problem, tension), problem.sands.size());
+    if (problem.scale_up.enabled())
+        model->add(SpecimenSet::scale_up, make_specimen_model(scale_up_problem(problem), tension), problem.scale_up.seeds);
+    if (problem.validation.enabled())
+        model->add(SpecimenSet::validation, make_specimen_model(validation_problem(problem), tension), problem.validation.seeds);
+    return model;
 }
 
 std::string problem_fingerprint(const CalibrationProblem& problem, const CubeModel& model) {
@@ -135,13 +134,20 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
         }
         result.stages.push_back(std::move(stage));
     }
-    // 4. The validation specimens: each stage's result where the fit never looked.
-    if (problem.validation.enabled()) {
-        const auto* validated = dynamic_cast<const ValidatedModel*>(&model);
-        if (!validated) throw std::logic_error("run_calibration: a problem with [validation] needs make_model()'s ValidatedModel");
+    // 4. The scale-up specimens: each stage's scales set where the specimen is larger; then the
+    //    validation specimens: each stage's result where the fit never looked.
+    if (problem.scale_up.enabled() || problem.validation.enabled()) {
+        const auto* sets = dynamic_cast<const ValidatedModel*>(&model);
+        if (!sets) throw std::logic_error("run_calibration: a problem with [scale_up] or [validation] needs make_model()'s ValidatedModel");
         for (CalibrationStage& st : result.stages) {
-            st.validation = validate_point(problem, *validated, executor, ledger, st.solution.best, st.sands(), log);
-            result.validation_runs += st.validation.runs;
+            if (problem.scale_up.enabled()) {
+                st.scale_up = scale_up_point(problem, *sets, executor, ledger, st.solution.best, st.fitted, log);
+                result.scale_up_runs += st.scale_up.runs;
+            }
+            if (problem.validation.enabled()) {
+                st.validation = validate_point(problem, *sets, executor, ledger, st.result(), st.sands(), log);
+                result.validation_runs += st.validation.runs;
+            }
         }
     }
     result.history = evaluator.history();

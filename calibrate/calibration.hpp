@@ -5,7 +5,8 @@
 //   per_sand  one solve per sand (3 targets each: no test of the model, only a fit)
 //   study     the study's protocol: calibrate on `calibrate_on`, then predict the other
 //             sands with the same parameters and report the prediction error
-// With [validation], each stage's result is then run on the validation specimens.
+// With [scale_up], each stage's scales are then set on the scale-up specimens (scale_up.hpp);
+// with [validation], each stage's result is then run on the validation specimens.
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "calibrate/evaluator.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate/run_executor.hpp"
+#include "calibrate/scale_up.hpp"
 #include "calibrate/solver.hpp"
 #include "calibrate/uncertainty.hpp"
 #include "calibrate/validation.hpp"
@@ -27,10 +29,16 @@ struct CalibrationStage {
     SolveResult solution;
     Uncertainty uncertainty;
     Evaluation prediction;                 ///< study mode: the best point run on `predicted`
-    StageValidation validation;            ///< the best point on the validation specimens ([validation])
+    StageScaleUp scale_up;                 ///< the scales set on the scale-up specimens ([scale_up])
+    StageValidation validation;            ///< the result on the validation specimens ([validation])
     double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< max relative standard error of the seed mean, by quantity
     /// The outcome of sand s (fitted or predicted) at the calibrated parameters; nullptr if none.
     [[nodiscard]] const SandOutcome* outcome(std::size_t sand) const;
+    /// The stage's result: the fit's best point, with its scales set on the scale-up specimens
+    /// when that was done (empty: no result).
+    [[nodiscard]] const std::vector<double>& result() const { return scale_up.point.empty() ? solution.best : scale_up.point; }
+    /// Sand s on the scale-up specimens at the result (predicted by the rescaling); nullptr if none.
+    [[nodiscard]] const SandOutcome* scaled_outcome(std::size_t sand) const;
     /// Sand s on the validation specimens; nullptr if not validated.
     [[nodiscard]] const SandOutcome* validation_outcome(std::size_t sand) const;
     /// The sands a stage's result holds for: fitted, then predicted.
@@ -43,6 +51,7 @@ struct CalibrationResult {
     std::vector<CalibrationStage> stages;
     std::vector<Evaluation> history;
     int runs_used = 0, runs_executed = 0, runs_from_ledger = 0, runs_failed = 0;
+    int scale_up_runs = 0;                 ///< runs of the scale-up specimens (apart from the budget)
     int validation_runs = 0;               ///< runs of the validation specimens (apart from the budget)
     double wall_seconds = 0.0;
     std::vector<std::string> log;          ///< the milestone lines
@@ -61,7 +70,8 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
 
 /// The model for a problem: DEM (model = "dem") or the analytic stand-in; it runs the
 /// direct-tension test too when `tension` or the problem fits the tensile strength, and is a
-/// ValidatedModel (fit and validation specimens) when the problem has [validation].
+/// ValidatedModel (fit, scale-up and validation specimens) when the problem has [scale_up] or
+/// [validation].
 std::unique_ptr<CubeModel> make_model(const CalibrationProblem& problem, bool tension = false);
 
 /// FNV-1a of the problem description and the model fingerprint: the ledger's identity.

@@ -30,15 +30,16 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// One specimen set: the fit's (problem.base, problem.seeds) or the validation's.
-struct SpecimenSet {
+/// One specimen set: the fit's (problem.base, problem.seeds), the scale-up's or the validation's.
+struct PlannedSet {
     std::string name;
     exp::CubeConfig base;
     std::vector<std::uint64_t> seeds;
 };
 
-std::vector<SpecimenSet> specimen_sets(const CalibrationProblem& problem) {
-    std::vector<SpecimenSet> sets{{"fit", problem.base, problem.seeds}};
+std::vector<PlannedSet> specimen_sets(const CalibrationProblem& problem) {
+    std::vector<PlannedSet> sets{{"fit", problem.base, problem.seeds}};
+    if (problem.scale_up.enabled()) sets.push_back({"scale-up", scale_up_problem(problem).base, problem.scale_up.seeds});
     if (problem.validation.enabled()) {
         const CalibrationProblem v = validation_problem(problem);
         sets.push_back({"validation", v.base, problem.validation.seeds});
@@ -141,7 +142,7 @@ int fitted_runs_of(const CalibrationProblem& problem, const ExpectedRuns& e, std
     return std::max(0, e.fitted - prediction);
 }
 
-RunCostPlan plan_sand(const CalibrationProblem& problem, const SpecimenSet& set, std::size_t s, const ExpectedRuns& e,
+RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSet& set, std::size_t s, const ExpectedRuns& e,
                       const exp::MaterialParams& start, double probe_seconds, std::vector<SpecimenPlan>& specimens) {
     exp::CubeConfig config = set.base;
     config.sand = problem.sands[s];
@@ -179,8 +180,8 @@ RunCostPlan plan_sand(const CalibrationProblem& problem, const SpecimenSet& set,
     const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, start) : l.strain_rate;
     const double end = kEndOverPeakStrain * expected_peak_strain(problem, problem.targets[s]);
     cost.compression_steps = probe.settle_steps + loading_steps(end, l.ramp_strain, rate, probe.time_step);
-    const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s)
-                                          : e.validation / static_cast<int>(problem.sands.size());
+    const int sands = static_cast<int>(problem.sands.size());
+    const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
     cost.compression_runs = problem.tension.fitted() ? per_set / 2 : per_set;
     if (problem.tension.fitted()) {
         const exp::TensionConfig tension = exp::load_tension_config(config);
@@ -216,7 +217,7 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     dry.workers = 1;
     const auto model = make_model(dry);
     const CalibrationResult r = run_calibration(dry, *model);
-    return {r.runs_used, static_cast<int>(r.history.size()), r.validation_runs};
+    return {r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
 }
 
 CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds) {
@@ -229,13 +230,14 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     plan.expected_runs = e.fitted;
     plan.expected_evaluations = e.evaluations;
     plan.validation_runs = e.validation;
+    plan.scale_up_runs = e.scale_up;
     if (problem.model == "analytic") {
         plan.assumptions.push_back("model = \"analytic\": the stand-in runs in milliseconds; nothing to estimate");
         return plan;
     }
     const ParameterSpace space(problem.parameters, problem.base.material);
     const exp::MaterialParams start = space.material(space.start());
-    for (const SpecimenSet& set : specimen_sets(problem))
+    for (const PlannedSet& set : specimen_sets(problem))
         for (std::size_t s = 0; s < problem.sands.size(); ++s)
             plan.runs.push_back(plan_sand(problem, set, s, e, start, probe_seconds, plan.specimens));
     double seconds = 0.0;
@@ -261,6 +263,7 @@ std::string plan_text(const CalibrationPlan& plan) {
     std::ostringstream o;
     o << "runs: " << plan.expected_runs << " expected of a budget of " << plan.budget << " (" << plan.expected_evaluations
       << " evaluations" << (plan.tension ? ", each compression run with its tension test" : "") << ")";
+    if (plan.scale_up_runs) o << ", then " << plan.scale_up_runs << " scale-up runs";
     if (plan.validation_runs) o << ", then " << plan.validation_runs << " validation runs";
     o << "\n";
     for (const SpecimenPlan& s : plan.specimens)
@@ -286,6 +289,7 @@ std::string plan_json(const CalibrationPlan& plan) {
     nlohmann::ordered_json j{{"budget", plan.budget},
                              {"expected_runs", plan.expected_runs},
                              {"expected_evaluations", plan.expected_evaluations},
+                             {"scale_up_runs", plan.scale_up_runs},
                              {"validation_runs", plan.validation_runs},
                              {"tension", plan.tension},
                              {"workers", plan.workers},

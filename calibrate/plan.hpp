@@ -35,7 +35,7 @@ inline constexpr double kTensionEndOverExpected = 1.6;
 
 /// One packing a calibration needs.
 struct SpecimenPlan {
-    std::string sand, set;           ///< set: "fit" or "validation"
+    std::string sand, set;           ///< set: "fit", "scale-up" or "validation"
     std::uint64_t seed = 1;
     std::int64_t particles = 0;      ///< the cached packing's, or genesis' sampled count
     bool cached = false;             ///< false: genesis runs first
@@ -60,6 +60,7 @@ struct CalibrationPlan {
     int budget = 0;                      ///< solver.max_runs
     int expected_runs = 0;               ///< fitted runs on the stand-in's path (≤ budget)
     int expected_evaluations = 0;
+    int scale_up_runs = 0;               ///< apart from the budget
     int validation_runs = 0;             ///< apart from the budget
     bool tension = false;                ///< each compression run has its tension companion
     int workers = 1, cores = 1;
@@ -72,9 +73,10 @@ struct CalibrationPlan {
 };
 
 /// Distinct fitted runs and validation runs of the problem's solver path on the analytic
-/// stand-in (no DEM run; an in-memory ledger): {expected fitted runs, evaluations, validation runs}.
+/// stand-in (no DEM run; an in-memory ledger): {expected fitted runs, evaluations, validation
+/// runs, scale-up runs}.
 struct ExpectedRuns {
-    int fitted = 0, evaluations = 0, validation = 0;
+    int fitted = 0, evaluations = 0, validation = 0, scale_up = 0;
 };
 ExpectedRuns expected_runs(const CalibrationProblem& problem);
 

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 using common::InputError;
 using namespace common::toml_io;
 
-const std::vector<std::string> kTables = {"calibration", "targets", "parameters", "solver", "run", "validation", "output"};
+const std::vector<std::string> kTables = {"calibration", "targets", "parameters", "solver", "run", "scale_up", "validation", "output"};
 const std::vector<std::string> kDefaultFree = {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"};
 
 std::vector<std::string> read_strings(Section& s, const char* key, std::vector<std::string> fallback) {
@@ -332,28 +332,62 @@ double largest_grain(const CalibrationProblem& p) {
     return largest * rule.scale;
 }
 
-void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& p) {
-    if (!root.get("validation")) return;
-    Section s(ctx, root, "validation");
-    ValidationSpec& v = p.validation;
+/// [scale_up] or [validation] (`table`): the edge (default: the fit's) and the seeds, checked
+/// against the size rule; `what` names the specimens in the messages.
+SpecimenSetSpec read_specimen_set(Context& ctx, const toml::table& root, const CalibrationProblem& p, const std::string& table,
+                                  const std::string& what) {
+    Section s(ctx, root, table);
+    SpecimenSetSpec v;
     v.edge = p.base.specimen.genesis.edge;
     s.real("edge_mm", v.edge, 1e-3);
     v.seeds = read_seeds(s, "seeds", {});
     s.finish();
-    const int edge_line = ctx.keys["validation.edge_mm"].line, seeds_line = ctx.keys["validation.seeds"].line;
+    const int edge_line = ctx.keys[table + ".edge_mm"].line, seeds_line = ctx.keys[table + ".seeds"].line;
     if (v.seeds.empty())
-        throw InputError(ctx.file, seeds_line, "key 'validation.seeds' is required and not empty: the packing seeds of the validation specimens");
-    for (std::uint64_t seed : v.seeds)
-        if (std::find(p.seeds.begin(), p.seeds.end(), seed) != p.seeds.end())
-            throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
-                                                       " is also a fitted seed (calibration.seeds): validation specimens must be unseen");
+        throw InputError(ctx.file, seeds_line, "key '" + table + ".seeds' is required and not empty: the packing seeds of the " + what);
     const double grain = largest_grain(p);
     if (!(v.edge >= 3.0 * grain))
-        throw InputError(ctx.file, edge_line, "key 'validation.edge_mm' = " + show(v.edge * 1e3) + " violates >= 3 x the largest grain (" +
+        throw InputError(ctx.file, edge_line, "key '" + table + ".edge_mm' = " + show(v.edge * 1e3) + " violates >= 3 x the largest grain (" +
                                                   show(grain * 1e3) + " mm), i.e. >= " + show(3e3 * grain) + " mm");
     exp::SpecimenSpec spec = p.base.specimen;
     spec.genesis.edge = v.edge;
-    if (const auto why = spec.invalid_reason()) throw InputError(ctx.file, edge_line, "key 'validation.edge_mm': " + *why);
+    if (const auto why = spec.invalid_reason()) throw InputError(ctx.file, edge_line, "key '" + table + ".edge_mm': " + *why);
+    return v;
+}
+
+bool contains(const std::vector<std::uint64_t>& seeds, std::uint64_t seed) {
+    return std::find(seeds.begin(), seeds.end(), seed) != seeds.end();
+}
+
+/// [scale_up]: needs a free scale parameter to set, and one stage per fitted set of sands.
+void read_scale_up(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    if (!root.get("scale_up")) return;
+    p.scale_up = read_specimen_set(ctx, root, p, "scale_up", "specimens on which the scales are set");
+    const int line = ctx.keys["scale_up.seeds"].line;
+    if (p.mode == Mode::study)
+        throw InputError(ctx.file, line, "table [scale_up] is not available with calibration.mode = \"study\" (its prediction runs "
+                                         "on the fitted specimens): use mode \"joint\" or \"per_sand\"");
+    bool scale_free = false;
+    for (const ParameterSpec& spec : p.parameters)
+        scale_free = scale_free || (spec.free && spec.role() != Role::shape);
+    if (!scale_free)
+        throw InputError(ctx.file, line, "table [scale_up] needs a free stiffness or strength parameter (e.g. effective_modulus_gpa, "
+                                         "tensile_strength_mpa) to set on its specimens; every one is fixed");
+}
+
+void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& p) {
+    if (!root.get("validation")) return;
+    ValidationSpec& v = p.validation;
+    v = read_specimen_set(ctx, root, p, "validation", "validation specimens");
+    const int seeds_line = ctx.keys["validation.seeds"].line;
+    for (std::uint64_t seed : v.seeds) {
+        if (contains(p.seeds, seed))
+            throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
+                                                       " is also a fitted seed (calibration.seeds): validation specimens must be unseen");
+        if (contains(p.scale_up.seeds, seed))
+            throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
+                                                       " is also a scale-up seed (scale_up.seeds): validation specimens must be unseen");
+    }
 }
 
 void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
@@ -548,18 +582,29 @@ CalibrationProblem load_calibration_problem(const fs::path& toml_file) {
     read_parameters(ctx, root, p);
     read_targets(ctx, root, p);
     read_solver(ctx, root, p);
+    read_scale_up(ctx, root, p);
     read_validation(ctx, root, p);
     read_output(ctx, root, p, toml_file.stem().string());
     return p;
 }
 
-CalibrationProblem validation_problem(const CalibrationProblem& problem) {
+namespace {
+
+/// `problem` on the specimens of `set`, with no other set of its own; it runs what it asks
+/// for (its runs are counted apart from the budget).
+CalibrationProblem on_specimens(const CalibrationProblem& problem, const SpecimenSetSpec& set) {
     CalibrationProblem v = problem;
-    v.base.specimen.genesis.edge = problem.validation.edge;
-    v.seeds = problem.validation.seeds;
+    v.base.specimen.genesis.edge = set.edge;
+    v.seeds = set.seeds;
+    v.scale_up = {};
     v.validation = {};
-    v.solver.max_runs = 1 << 30;  // the validation runs what it asks for; they are counted apart
+    v.solver.max_runs = 1 << 30;
     return v;
 }
+
+}  // namespace
+
+CalibrationProblem validation_problem(const CalibrationProblem& problem) { return on_specimens(problem, problem.validation); }
+CalibrationProblem scale_up_problem(const CalibrationProblem& problem) { return on_specimens(problem, problem.scale_up); }
 
 }  // namespace gradem::cal

@@ -11,6 +11,7 @@
 //   [parameters.<name>]  free, start, lower, upper, scale = "log" | "linear"
 //   [solver]      method, max_runs, tolerance, fd_step, homogeneity_tolerance, penalty, seed
 //   [run]         workers, timeout_s
+//   [scale_up]    edge_mm, seeds (larger specimens on which the scales are set after the fit)
 //   [validation]  edge_mm, seeds (specimens the fit never saw, run at its result)
 //   [output]      dir, ledger
 //
@@ -89,14 +90,21 @@ struct SolverSettings {
     std::uint64_t seed = 1;               ///< for the stochastic global method (CRS2)
 };
 
-/// The validation specimens ([validation]): after the fit, its result is run on cubes of another
-/// edge and on packing seeds the fit never saw; their errors are reported first. Not part of
-/// the problem's identity (describe()): changing them keeps the ledger's fitted runs.
-struct ValidationSpec {
-    double edge = 0.0;                 ///< [m] cube edge of the validation specimens (0: the fit's)
-    std::vector<std::uint64_t> seeds;  ///< their packing seeds (empty: no validation)
+/// A set of specimens besides the fitted ones: a cube edge and packing seeds.
+///   [validation]  after the fit, its result is run on cubes of another edge and on packing
+///                 seeds the fit never saw; their errors are reported first;
+///   [scale_up]    after the fit, its result is run once on (larger) cubes and E* and the
+///                 strengths are set there by the homogeneity (docs/calibration.md "Scales set on
+///                 larger specimens"): the shape is searched where runs are cheap, the scales
+///                 where the specimen is closer to converged.
+/// Neither is part of the problem's identity (describe()): changing them keeps the ledger's
+/// fitted runs (their own runs are keyed by their own specimens).
+struct SpecimenSetSpec {
+    double edge = 0.0;                 ///< [m] cube edge of the set's specimens (0: the fit's)
+    std::vector<std::uint64_t> seeds;  ///< their packing seeds (empty: no such set)
     [[nodiscard]] bool enabled() const { return !seeds.empty(); }
 };
+using ValidationSpec = SpecimenSetSpec;
 
 struct CalibrationProblem {
     std::filesystem::path file;
@@ -111,6 +119,7 @@ struct CalibrationProblem {
     std::filesystem::path lab_results;
     std::vector<SandTargets> targets;     ///< same order as sands
     TensionTarget tension;                ///< the direct-tension target (none by default)
+    SpecimenSetSpec scale_up;             ///< where the scales are set after the fit (none by default)
     ValidationSpec validation;            ///< the validation specimens (none by default)
     bool representative = false;          ///< the lab data say they are representative, not measured
     std::string lab_note;
@@ -136,6 +145,8 @@ CalibrationProblem load_calibration_problem(const std::filesystem::path& toml_fi
 /// The problem as its validation runs see it: the validation edge and seeds, no validation of
 /// its own (the same targets, parameters, ledger and output folder).
 CalibrationProblem validation_problem(const CalibrationProblem& problem);
+/// The problem as its scale-up runs see it: the scale-up edge and seeds, likewise.
+CalibrationProblem scale_up_problem(const CalibrationProblem& problem);
 
 /// Reads the targets of `sands` from a lab_results.json; InputError naming the file otherwise.
 std::vector<SandTargets> read_lab_targets(const std::filesystem::path& json_file, const std::vector<std::string>& sands,

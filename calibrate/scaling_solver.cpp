@@ -13,42 +13,11 @@
 #include <nlopt.hpp>
 #include <sstream>
 
+#include "calibrate/rescaling.hpp"
 #include "calibrate/solver.hpp"
 
 namespace gradem::cal {
 namespace {
-
-struct ScaleIndices {
-    std::vector<std::size_t> stiffness, strength, shape;
-};
-
-ScaleIndices split(const ParameterSpace& space) {
-    ScaleIndices s;
-    for (std::size_t k = 0; k < space.size(); ++k) {
-        const Role r = space.free(k).role();
-        (r == Role::stiffness_scale ? s.stiffness : r == Role::strength_scale ? s.strength : s.shape).push_back(k);
-    }
-    return s;
-}
-
-/// x with the stiffness parameters × α and strength parameters × β, clamped to their bounds;
-/// `applied` receives the α, β that survived the clamping (of the first parameter of each kind).
-std::vector<double> apply_scales(const ParameterSpace& space, const ScaleIndices& idx, std::vector<double> x, Scales sc,
-                                 Scales* applied) {
-    Scales got;
-    for (std::size_t k : idx.stiffness) {
-        const double v = space.clamp(k, x[k] * sc.alpha);
-        if (k == idx.stiffness.front()) got.alpha = v / x[k];
-        x[k] = v;
-    }
-    for (std::size_t k : idx.strength) {
-        const double v = space.clamp(k, x[k] * sc.beta);
-        if (k == idx.strength.front()) got.beta = v / x[k];
-        x[k] = v;
-    }
-    if (applied) *applied = got;
-    return x;
-}
 
 double max_deviation(const Evaluation& predicted, const Evaluation& actual, Quantity q) {
     double worst = 0.0;
@@ -57,21 +26,8 @@ double max_deviation(const Evaluation& predicted, const Evaluation& actual, Quan
     return worst;
 }
 
-/// The closed-form rescaling of an evaluation, and the objective it predicts.
-struct Rescaling {
-    Scales scales;              ///< applied (after clamping)
-    std::vector<double> point;  ///< rescaled parameters
-    double predicted = 0.0;     ///< predicted objective
-    Evaluation prediction;
-};
-
-Rescaling rescale(SolveContext& ctx, const ScaleIndices& idx, const Evaluation& e) {
-    Rescaling r;
-    const Scales want = best_scales(e, ctx.problem, !idx.stiffness.empty(), !idx.strength.empty());
-    r.point = apply_scales(ctx.space, idx, e.values, want, &r.scales);
-    r.prediction = rescaled(e, r.scales.alpha, r.scales.beta);
-    r.predicted = objective(r.prediction, ctx.problem);
-    return r;
+Rescaling rescale(const SolveContext& ctx, const ScaleIndices& idx, const Evaluation& e) {
+    return cal::rescale(ctx.problem, ctx.space, idx, e);
 }
 
 std::string percent(double x) {
@@ -213,7 +169,7 @@ void confirm(SolveContext& ctx, const ScaleIndices& idx, BestTracker& tracker, s
 }  // namespace
 
 SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
-    const ScaleIndices idx = split(ctx.space);
+    const ScaleIndices idx = split_by_role(ctx.space);
     BestTracker tracker(ctx.problem);
     SolveResult head;
     head.method = "scaling";

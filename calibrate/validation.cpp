@@ -7,27 +7,77 @@
 
 namespace gradem::cal {
 
+ValidatedModel::ValidatedModel(std::unique_ptr<CubeModel> fit, std::size_t sands) : fit_(std::move(fit)), sands_(sands) {}
+
 ValidatedModel::ValidatedModel(std::unique_ptr<CubeModel> fit, std::unique_ptr<CubeModel> validation, std::size_t sands,
                                std::vector<std::uint64_t> validation_seeds)
-    : fit_(std::move(fit)), validation_(std::move(validation)), sands_(sands), seeds_(std::move(validation_seeds)) {}
+    : ValidatedModel(std::move(fit), sands) {
+    add(SpecimenSet::validation, std::move(validation), std::move(validation_seeds));
+}
+
+void ValidatedModel::add(SpecimenSet set, std::unique_ptr<CubeModel> model, std::vector<std::uint64_t> seeds) {
+    if (has(set)) throw std::logic_error("ValidatedModel::add: the specimen set is there already");
+    extras_.push_back({set, std::move(model), std::move(seeds), sands_ * (extras_.size() + 1)});
+}
+
+const ValidatedModel::Extra* ValidatedModel::find(SpecimenSet set) const {
+    for (const Extra& e : extras_)
+        if (e.set == set) return &e;
+    return nullptr;
+}
+
+const CubeModel& ValidatedModel::model(SpecimenSet set) const {
+    const Extra* e = find(set);
+    if (!e) throw std::logic_error("ValidatedModel: no such specimen set");
+    return *e->model;
+}
+
+std::size_t ValidatedModel::offset(SpecimenSet set) const {
+    const Extra* e = find(set);
+    if (!e) throw std::logic_error("ValidatedModel: no such specimen set");
+    return e->offset;
+}
+
+namespace {
+
+const char* set_name(SpecimenSet set) { return set == SpecimenSet::scale_up ? "scale-up " : "validation "; }
+
+}  // namespace
 
 void ValidatedModel::prepare(const std::vector<std::uint64_t>& seeds, int workers,
                              const std::function<void(const std::string&)>& log) {
     fit_->prepare(seeds, workers, log);
-    validation_->prepare(seeds_, workers, log ? [&log](const std::string& s) { log("validation " + s); }
-                                              : std::function<void(const std::string&)>{});
+    for (Extra& e : extras_)
+        e.model->prepare(e.seeds, workers, log ? [&log, &e](const std::string& s) { log(set_name(e.set) + s); }
+                                               : std::function<void(const std::string&)>{});
 }
 
 void ValidatedModel::load_prepared(const std::vector<std::uint64_t>& seeds) {
     fit_->load_prepared(seeds);
-    validation_->load_prepared(seeds_);
+    for (Extra& e : extras_) e.model->load_prepared(e.seeds);
 }
 
 RunOutcome ValidatedModel::run(const RunRequest& request, double timeout_s) const {
     if (request.sand < sands_) return fit_->run(request, timeout_s);
-    RunRequest local = request;
-    local.sand -= sands_;
-    return validation_->run(local, timeout_s);
+    for (const Extra& e : extras_)
+        if (request.sand >= e.offset && request.sand < e.offset + sands_) {
+            RunRequest local = request;
+            local.sand -= e.offset;
+            return e.model->run(local, timeout_s);
+        }
+    throw std::logic_error("ValidatedModel::run: sand " + std::to_string(request.sand) + " is in no specimen set");
+}
+
+Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set, RunExecutor& executor,
+                           Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
+                           const std::string& label, int& runs, int& from_ledger) {
+    const ParameterSpace space(on_set.parameters, on_set.base.material);
+    CaseExecutor shifted(executor, model.offset(set));
+    Evaluator evaluator(on_set, space, shifted, ledger, model.model(set));
+    Evaluation e = evaluator.evaluate(point, sands, label);
+    runs = evaluator.runs_used();
+    from_ledger = evaluator.runs_from_ledger();
+    return e;
 }
 
 StageValidation validate_point(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor,
@@ -39,12 +89,8 @@ StageValidation validate_point(const CalibrationProblem& problem, const Validate
         return v;
     }
     const CalibrationProblem vp = validation_problem(problem);
-    const ParameterSpace space(vp.parameters, vp.base.material);
-    CaseExecutor shifted(executor, model.offset());
-    Evaluator evaluator(vp, space, shifted, ledger, model.validation());
-    v.evaluation = evaluator.evaluate(point, sands, "validation");
-    v.runs = evaluator.runs_used();
-    v.from_ledger = evaluator.runs_from_ledger();
+    v.evaluation = evaluate_on_set(vp, model, SpecimenSet::validation, executor, ledger, point, sands, "validation", v.runs,
+                                   v.from_ledger);
     if (log)
         log("validation on " + std::to_string(vp.seeds.size()) + " unseen seeds, edge " + std::to_string(vp.base.specimen.genesis.edge * 1e3) +
             " mm: " + std::to_string(v.runs) + " runs (" + std::to_string(v.from_ledger) + " from the ledger)" +

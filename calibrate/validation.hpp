@@ -5,9 +5,10 @@
 // problem fits it). A calibration that holds only on its own specimens is overfitted to their
 // packing noise or to their size; the summary leads with these errors.
 //
-// ValidatedModel is the fit's model and the validation's as one CubeModel, as StudyModels is
-// for a study's cases: the validation's sand s is the composite's sand (fitted sands) + s, so
-// an MPI job's worker ranks, which build make_model(problem), run validation requests too.
+// ValidatedModel is the fit's model and those of its other specimen sets (scale-up,
+// validation) as one CubeModel, as StudyModels is for a study's cases: set k's sand s is the
+// composite's sand (k + 1) x (fitted sands) + s, so an MPI job's worker ranks, which build
+// make_model(problem), run those requests too.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -22,29 +23,52 @@
 
 namespace gradem::cal {
 
+/// The specimen sets besides the fitted ones.
+enum class SpecimenSet { scale_up, validation };
+
 class ValidatedModel final : public CubeModel {
 public:
+    /// The fit's model for `sands` sands; add() the other sets.
+    ValidatedModel(std::unique_ptr<CubeModel> fit, std::size_t sands);
+    /// The fit and its validation set.
     ValidatedModel(std::unique_ptr<CubeModel> fit, std::unique_ptr<CubeModel> validation, std::size_t sands,
                    std::vector<std::uint64_t> validation_seeds);
+    void add(SpecimenSet set, std::unique_ptr<CubeModel> model, std::vector<std::uint64_t> seeds);
 
     [[nodiscard]] const CubeModel& fit() const { return *fit_; }
-    [[nodiscard]] const CubeModel& validation() const { return *validation_; }
-    /// The composite sand number of the validation's first sand.
-    [[nodiscard]] std::size_t offset() const { return sands_; }
+    [[nodiscard]] bool has(SpecimenSet set) const { return find(set) != nullptr; }
+    [[nodiscard]] const CubeModel& model(SpecimenSet set) const;
+    /// The composite sand number of the set's first sand.
+    [[nodiscard]] std::size_t offset(SpecimenSet set) const;
+    [[nodiscard]] const CubeModel& validation() const { return model(SpecimenSet::validation); }
 
-    /// The fit's packings for `seeds`, the validation's for its own seeds.
+    /// The fit's packings for `seeds`, each set's for its own seeds.
     void prepare(const std::vector<std::uint64_t>& seeds, int workers, const std::function<void(const std::string&)>& log) override;
     void load_prepared(const std::vector<std::uint64_t>& seeds) override;
     [[nodiscard]] RunOutcome run(const RunRequest& request, double timeout_s) const override;
-    /// The fit's: the validation specimens are not part of the problem's identity.
+    /// The fit's: the other specimen sets are not part of the problem's identity.
     [[nodiscard]] std::string fingerprint() const override { return fit_->fingerprint(); }
     [[nodiscard]] std::string run_fingerprint(CubeTest test) const override { return fit_->run_fingerprint(test); }
 
 private:
-    std::unique_ptr<CubeModel> fit_, validation_;
+    struct Extra {
+        SpecimenSet set;
+        std::unique_ptr<CubeModel> model;
+        std::vector<std::uint64_t> seeds;
+        std::size_t offset;
+    };
+    [[nodiscard]] const Extra* find(SpecimenSet set) const;
+    std::unique_ptr<CubeModel> fit_;
     std::size_t sands_;
-    std::vector<std::uint64_t> seeds_;
+    std::vector<Extra> extras_;
 };
+
+/// `point` on set `set` of `model` for `sands` through `executor` (which runs `model`'s
+/// requests), recording into `ledger`, as `on_set` (the problem on that set's specimens) defines
+/// its runs; `runs` and `from_ledger` receive its counts.
+Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set, RunExecutor& executor,
+                           Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
+                           const std::string& label, int& runs, int& from_ledger);
 
 /// One stage's validation: its result on the validation specimens of `sands`.
 struct StageValidation {
