@@ -72,14 +72,15 @@ void write_material(toml::table& material, const exp::MaterialParams& m) {
 /// The base config as written (`root`: every section the calibration did not change stays),
 /// with the calibrated material `m` for `sand`.
 std::string calibrated_cube_config(const CalibrationProblem& p, toml::table root, const exp::MaterialParams& m,
-                                   const std::string& sand, const std::string& stage_label) {
-    // 1. The specimen: this sand, the calibration's edge and paste size, absolute paths.
+                                   const std::string& sand, const std::string& stage_label, double edge) {
+    // 1. The specimen: this sand, the result's edge (`edge` [m]: the fit's, or the scale-up's
+    //    when the scales were set there) and paste size, absolute paths.
     toml::table& specimen = table_of(root, "specimen");
     specimen.insert_or_assign("sand", sand);
     if (!p.base.dataset.empty()) specimen.insert_or_assign("dataset", fs::absolute(p.base.dataset).string());
     if (!p.base.sieve_csv.empty()) specimen.insert_or_assign("sieve_csv", fs::absolute(p.base.sieve_csv).string());
     constexpr double kMm = 1e-3;  // [m] per config mm
-    table_of(root, "genesis").insert_or_assign("edge_mm", exact_config(p.base.specimen.genesis.edge, kMm));
+    table_of(root, "genesis").insert_or_assign("edge_mm", exact_config(edge, kMm));
     if (p.base.specimen.paste) {
         toml::table& paste = table_of(root, "paste");
         paste.insert_or_assign("min_diameter_mm", exact_config(p.base.specimen.paste->paste.min_diameter, kMm));
@@ -110,12 +111,13 @@ std::vector<std::pair<fs::path, std::string>> calibrated_cube_configs(const Cali
     const toml::table base = toml::parse_file(p.base_file.string());  // read once, copied per sand
     const ParameterSpace space(p.parameters, p.base.material);
     for (const CalibrationStage& st : r.stages) {
-        if (st.solution.best.empty()) continue;
-        const exp::MaterialParams m = space.material(st.solution.best);
+        if (st.result().empty()) continue;
+        const exp::MaterialParams m = space.material(st.result());
+        const double edge = st.scale_up.point.empty() ? p.base.specimen.genesis.edge : p.scale_up.edge;
         std::vector<std::size_t> sands = st.fitted;  // study mode: the predicted sands run the same parameters
         sands.insert(sands.end(), st.predicted.begin(), st.predicted.end());
         for (std::size_t s : sands)
-            files.emplace_back(p.out_dir / file_name(p.sands[s]), calibrated_cube_config(p, base, m, p.sands[s], st.label));
+            files.emplace_back(p.out_dir / file_name(p.sands[s]), calibrated_cube_config(p, base, m, p.sands[s], st.label, edge));
     }
     return files;
 }

@@ -53,6 +53,9 @@ std::string pct(double v) {
     return buf;
 }
 
+/// Were the stage's scales set on the scale-up specimens ([scale_up])?
+bool scaled_up(const CalibrationStage& st) { return !st.scale_up.point.empty(); }
+
 struct TargetRow {
     std::string stage, sand, role;
     Quantity q;
@@ -67,7 +70,8 @@ struct TargetRow {
 std::vector<TargetRow> target_rows(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<TargetRow> rows;
     auto add = [&](std::size_t s, const char* role) {
-        const SandOutcome* o = std::string(role) == "validation" ? st.validation_outcome(s) : st.outcome(s);
+        const std::string r = role;
+        const SandOutcome* o = r == "validation" ? st.validation_outcome(s) : r == "scale-up" ? st.scaled_outcome(s) : st.outcome(s);
         for (Quantity q : p.fitted_quantities()) {
             TargetRow r{st.label, p.sands[s], role, q, target_of(p.targets[s], q), std::nan(""), std::nan(""), 0, std::nan(""), std::nan("")};
             if (o && o->count(q) > 0) {
@@ -89,17 +93,27 @@ std::vector<TargetRow> target_rows(const CalibrationProblem& p, const Calibratio
     };
     for (std::size_t s : st.fitted) add(s, "fitted");
     for (std::size_t s : st.predicted) add(s, "predicted");
+    if (scaled_up(st))
+        for (std::size_t s : st.fitted) add(s, "scale-up");
     if (p.validation.enabled())
         for (std::size_t s : st.sands()) add(s, "validation");
     return rows;
 }
 
-/// "5 mm cubes, packing seeds 11, 12, 13".
-std::string validation_specimens_text(const CalibrationProblem& p) {
-    std::string seeds;
-    for (std::uint64_t s : p.validation.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
-    return fmt(p.validation.edge * 1e3, 3) + " mm cubes, packing seeds " + seeds;
+/// The role of the rows that state the stage's result on its own specimens: "scale-up" when the
+/// scales were set on the scale-up specimens, else the fit's rows ("fitted", "predicted").
+bool is_result_row(const CalibrationStage& st, const std::string& role) {
+    return scaled_up(st) ? role == "scale-up" : role == "fitted" || role == "predicted";
 }
+
+/// "3.5 mm cubes, packing seeds 11, 12, 13".
+std::string specimens_text(const SpecimenSetSpec& set) {
+    std::string seeds;
+    for (std::uint64_t s : set.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
+    return fmt(set.edge * 1e3, 3) + " mm cubes, packing seeds " + seeds;
+}
+
+std::string validation_specimens_text(const CalibrationProblem& p) { return specimens_text(p.validation); }
 
 /// Does the stage's result hold on the validation specimens (every validation row met)?
 bool validation_holds(const std::vector<TargetRow>& rows) {
@@ -124,15 +138,18 @@ struct ShapeIndexRow {
 
 std::vector<ShapeIndexRow> shape_index_rows(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<ShapeIndexRow> rows;
-    auto add = [&](std::size_t s, const char* role) {
+    auto add = [&](std::size_t s, const char* role, const SandOutcome* o) {
         const SandTargets& t = p.targets[s];
-        const SandOutcome* o = st.outcome(s);
         rows.push_back({p.sands[s], role, shape_index(t.modulus.mean, t.peak.mean, t.strain.mean),
                         o && o->ok > 0 ? shape_index(o->value(Quantity::modulus), o->value(Quantity::peak), o->value(Quantity::strain))
                                        : std::nan("")});
     };
-    for (std::size_t s : st.fitted) add(s, "fitted");
-    for (std::size_t s : st.predicted) add(s, "predicted");
+    for (std::size_t s : st.fitted) add(s, "fitted", st.outcome(s));
+    for (std::size_t s : st.predicted) add(s, "predicted", st.outcome(s));
+    if (scaled_up(st))
+        for (std::size_t s : st.fitted) add(s, "scale-up", st.scaled_outcome(s));
+    if (p.validation.enabled())
+        for (std::size_t s : st.sands()) add(s, "validation", st.validation_outcome(s));
     return rows;
 }
 
@@ -140,8 +157,8 @@ std::vector<ShapeIndexRow> shape_index_rows(const CalibrationProblem& p, const C
 /// in the material of the first stage's best point (or the start), config units.
 json bond_model_parameters(const CalibrationProblem& p, const CalibrationResult& r) {
     const ParameterSpace space(p.parameters, p.base.material);
-    const bool solved = !r.stages.empty() && !r.stages[0].solution.best.empty();
-    const exp::MaterialParams m = space.material(solved ? r.stages[0].solution.best : space.start());
+    const bool solved = !r.stages.empty() && !r.stages[0].result().empty();
+    const exp::MaterialParams m = space.material(solved ? r.stages[0].result() : space.start());
     json out = json::object();
     for (const exp::MaterialParameter& row : exp::material_table())
         if (row.in_config && row.applies_to(p.bond_model()) && !row.applies_to(BondModel::parallel_bond))
@@ -158,7 +175,9 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
             j["value"] = spec.start;
         } else {
             const std::size_t k = *space.index_of(spec.name);
-            j["value"] = st.solution.best.empty() ? json(nullptr) : json(st.solution.best[k]);
+            const std::vector<double>& result = st.result();
+            j["value"] = result.empty() ? json(nullptr) : json(result[k]);
+            if (scaled_up(st)) j["fit_value"] = st.solution.best[k];  // on the fit's specimens, before the scales were set
             j["start"] = spec.start;
             j["lower"] = spec.lower;
             j["upper"] = spec.upper;
@@ -167,7 +186,8 @@ json parameters_json(const CalibrationProblem& p, const CalibrationStage& st) {
             if (u.computed) {
                 j["std_error"] = spec.log_scale ? json{{"relative", number(u.std_error_natural[k])}}
                                                 : json{{"absolute", number(u.std_error_natural[k])}};
-                j["one_sigma_interval"] = {number(u.low[k]), number(u.high[k])};
+                const double moved = scaled_up(st) ? result[k] / st.solution.best[k] : 1.0;  // the interval moves with the scale
+                j["one_sigma_interval"] = {number(u.low[k] * moved), number(u.high[k] * moved)};
             }
         }
         out.push_back(j);
@@ -235,6 +255,9 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
         } else if (r.role == "validation") {
             s << " - on the validation specimens (" << validation_specimens_text(p)
               << "), which the fit never saw: the calibrated parameters do not hold there";
+        } else if (r.role == "scale-up") {
+            s << " - at the result on the scale-up specimens (" << specimens_text(p.scale_up)
+              << "), where the scales were set: the best rescaling of the fit's shape cannot meet it there";
         } else if (r.role == "predicted") {
             s << " - a prediction, not a fit";
         } else if (p.mode == Mode::joint) {
@@ -245,9 +268,9 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
     return out;
 }
 
-json noise_floor_json(const CalibrationProblem& p, const CalibrationStage& st) {
+json noise_floor_json(const CalibrationProblem& p, const double (&floor)[kQuantityCount]) {
     json j = json::object();
-    for (Quantity q : p.fitted_quantities()) j[to_string(q)] = st.noise_floor[static_cast<int>(q)];
+    for (Quantity q : p.fitted_quantities()) j[to_string(q)] = floor[static_cast<int>(q)];
     return j;
 }
 
@@ -277,7 +300,7 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
               {"best_evaluation", s.best_eval.index},
               {"parameters", parameters_json(p, st)},
               {"targets", targets},
-              {"noise_floor_rel_se", noise_floor_json(p, st)},
+              {"noise_floor_rel_se", noise_floor_json(p, st.noise_floor)},
               {"identifiability", {{"computed", u.computed}, {"note", u.note}, {"singular_values", u.singular_values},
                                    {"condition_number", number(u.condition)}, {"poorly_identified", u.poorly_identified},
                                    {"difference_runs", u.fd_runs}, {"difference_points_reused", u.reused}}},
@@ -294,6 +317,13 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
                             {"strain_deviation", s.homogeneity.strain_deviation}, {"tolerance", p.solver.homogeneity_tolerance}};
     if (s.homogeneity.done && p.tension.fitted()) j["homogeneity"]["tension_deviation"] = number(s.homogeneity.tension_deviation);
     if (!st.prediction.sands.empty() && st.prediction.failed) j["prediction_failure"] = st.prediction.failure;
+    if (p.scale_up.enabled()) {
+        const StageScaleUp& u = st.scale_up;
+        j["scale_up"] = {{"edge_mm", p.scale_up.edge * 1e3}, {"seeds", p.scale_up.seeds}, {"runs", u.runs},
+                         {"from_ledger", u.from_ledger}, {"done", scaled_up(st)}, {"alpha", number(u.scales.alpha)},
+                         {"beta", number(u.scales.beta)}, {"noise_floor_rel_se", noise_floor_json(p, u.noise_floor)},
+                         {"note", u.note}};
+    }
     if (p.validation.enabled()) {
         const StageValidation& v = st.validation;
         j["validation"] = {{"edge_mm", p.validation.edge * 1e3}, {"seeds", p.validation.seeds}, {"runs", v.runs},
@@ -329,14 +359,43 @@ void validation_markdown(std::ostringstream& md, const CalibrationProblem& p, co
     else if (st.validation.evaluation.failed) md << "a run failed (" << st.validation.evaluation.failure << ").\n\n";
     else if (validation_holds(rows)) md << "every target holds on specimens the fit never saw.\n\n";
     else md << "**the result does NOT hold on specimens the fit never saw** (rows marked no below).\n\n";
-    md << "| sand | target | fitted rel. error | validation rel. error | validation met |\n|---|---|---|---|---|\n";
+    md << "| sand | target | " << (scaled_up(st) ? "scale-up" : "fitted") << " rel. error | validation rel. error | validation met |\n"
+       << "|---|---|---|---|---|\n";
     for (const TargetRow& v : rows) {
         if (v.role != "validation") continue;
         double fitted = std::nan("");
         for (const TargetRow& f : rows)
-            if (f.role != "validation" && f.sand == v.sand && f.q == v.q) fitted = f.rel_error;
+            if (is_result_row(st, f.role) && f.sand == v.sand && f.q == v.q) fitted = f.rel_error;
         md << "| " << v.sand << " | " << label(v.q) << " | " << pct(fitted) << " | " << pct(v.rel_error) << " | "
            << (v.met ? "yes" : "no") << " |\n";
+    }
+    md << "\n";
+}
+
+/// Where the stage's scales were set: the specimens, α and β, and the fit's point against the result.
+void scale_up_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
+    const StageScaleUp& u = st.scale_up;
+    md << "**Scales set** on " << specimens_text(p.scale_up) << " (" << u.runs << " runs, " << u.from_ledger
+       << " from the ledger): ";
+    if (!scaled_up(st)) {
+        md << u.note << ".\n\n";
+        return;
+    }
+    md << "the fit's point run there once, then moduli × " << fmt(u.scales.alpha) << " and strengths × " << fmt(u.scales.beta)
+       << " (the closed-form rescaling: E × α, strengths × β, strain at peak × β/α). The result below is that point; its "
+          "scale-up rows are the runs rescaled, its validation rows are run.\n\n";
+    md << "| sand | target | fitted (fit's specimens, fit's point) | scale-up, fit's point (run) | scale-up, result |\n"
+          "|---|---|---|---|---|\n";
+    const std::vector<TargetRow> rows = target_rows(p, st);
+    for (const TargetRow& r : rows) {
+        if (r.role != "scale-up") continue;
+        double fitted = std::nan(""), measured = std::nan("");
+        for (const TargetRow& f : rows)
+            if (f.role == "fitted" && f.sand == r.sand && f.q == r.q) fitted = f.rel_error;
+        for (const SandOutcome& o : u.measured.sands)
+            if (p.sands[o.sand] == r.sand && o.count(r.q) > 0) measured = o.mean[static_cast<int>(r.q)] / r.lab.mean - 1.0;
+        md << "| " << r.sand << " | " << label(r.q) << " | " << pct(fitted) << " | " << pct(measured) << " | " << pct(r.rel_error)
+           << " |\n";
     }
     md << "\n";
 }
@@ -372,7 +431,8 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"lab_note", p.lab_note},
             {"dem_test_runs", r.runs_used},
             {"runs", {{"total", r.runs_used}, {"executed_now", r.runs_executed}, {"from_ledger", r.runs_from_ledger},
-                      {"failed", r.runs_failed}, {"budget", p.solver.max_runs}, {"validation", r.validation_runs}}},
+                      {"failed", r.runs_failed}, {"budget", p.solver.max_runs}, {"scale_up", r.scale_up_runs},
+                      {"validation", r.validation_runs}}},
             {"evaluations", r.history.size()},
             {"wall_seconds", r.wall_seconds},
             {"ledger", p.ledger.string()},
@@ -430,7 +490,6 @@ void homogeneity_markdown(std::ostringstream& md, const SolveResult& s) {
 }
 
 void parameters_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
-    const SolveResult& s = st.solution;
     md << "| parameter | value | ± 1 s.e. | bounds | free |\n|---|---|---|---|---|\n";
     const ParameterSpace space(p.parameters, p.base.material);
     for (const ParameterSpec& spec : space.all()) {
@@ -439,7 +498,7 @@ void parameters_markdown(std::ostringstream& md, const CalibrationProblem& p, co
             continue;
         }
         const std::size_t k = *space.index_of(spec.name);
-        const double v = s.best.empty() ? std::nan("") : s.best[k];
+        const double v = st.result().empty() ? std::nan("") : st.result()[k];
         std::string se = "-";
         if (st.uncertainty.computed)
             se = spec.log_scale ? pct(st.uncertainty.std_error_natural[k]).substr(1) : fmt(st.uncertainty.std_error_natural[k], 3);
@@ -468,10 +527,19 @@ void shape_index_markdown(std::ostringstream& md, const CalibrationProblem& p, c
            << pct(row.sim / row.lab - 1.0) << " |\n";
 }
 
+void noise_floor_line(std::ostringstream& md, const CalibrationProblem& p, const double (&floor)[kQuantityCount]) {
+    md << "modulus " << pct(floor[0]).substr(1) << ", peak " << pct(floor[1]).substr(1) << ", strain " << pct(floor[2]).substr(1);
+    if (p.tension.fitted()) md << ", tension " << pct(floor[static_cast<int>(Quantity::tension)]).substr(1);
+}
+
 void noise_floor_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {
-    md << "\nNoise floor (relative standard error of the seed mean): modulus " << pct(st.noise_floor[0]).substr(1)
-       << ", peak " << pct(st.noise_floor[1]).substr(1) << ", strain " << pct(st.noise_floor[2]).substr(1);
-    if (p.tension.fitted()) md << ", tension " << pct(st.noise_floor[static_cast<int>(Quantity::tension)]).substr(1);
+    md << "\nNoise floor (relative standard error of the seed mean): ";
+    noise_floor_line(md, p, st.noise_floor);
+    if (scaled_up(st)) {
+        md << " on the fit's specimens; ";
+        noise_floor_line(md, p, st.scale_up.noise_floor);
+        md << " on the scale-up specimens, where the scales were set";
+    }
     md << ".\n\n";
 }
 
@@ -527,6 +595,7 @@ std::string summary_markdown(const CalibrationProblem& p, const CalibrationResul
         const SolveResult& s = st.solution;
         md << "## " << st.label << "\n\n";
         if (p.validation.enabled()) validation_markdown(md, p, st);
+        if (p.scale_up.enabled()) scale_up_markdown(md, p, st);
         md << "Solver path: " << s.method << "; stop: " << s.stop_reason << "; objective Σr² = " << fmt(s.best_objective) << "\n\n";
         homogeneity_markdown(md, s);
         parameters_markdown(md, p, st);
@@ -573,10 +642,13 @@ std::string curves_csv(const CalibrationProblem& p, const CalibrationResult& r) 
         std::vector<std::size_t> sands = st.fitted;
         sands.insert(sands.end(), st.predicted.begin(), st.predicted.end());
         for (std::size_t s : sands) {
-            if (const Evaluation* e = st.evaluation_of(s)) {
+            // The result's curves: on the scale-up specimens (rescaled) when the scales were set there.
+            const bool up = scaled_up(st) && st.scaled_outcome(s);
+            const std::vector<std::uint64_t>& seeds = up ? p.scale_up.seeds : p.seeds;
+            if (const Evaluation* e = up ? &st.scale_up.prediction : st.evaluation_of(s)) {
                 std::size_t run = 0;
                 for (std::size_t k = 0; k < e->sands.size(); ++k) {
-                    for (std::uint64_t seed : p.seeds) {
+                    for (std::uint64_t seed : seeds) {
                         const RunOutcome& o = e->runs[run++];
                         if (e->sands[k].sand != s) continue;
                         for (std::size_t i = 0; i < o.curve_strain.size(); ++i)
@@ -617,10 +689,11 @@ std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r
             b << ";";
         }
         const ParameterSpace space(p.parameters, p.base.material);
-        for (std::size_t k = 0; k < space.size() && !st.solution.best.empty(); ++k)
-            b << " " << space.free(k).name << "=" << fmt(st.solution.best[k], 3);
+        for (std::size_t k = 0; k < space.size() && !st.result().empty(); ++k)
+            b << " " << space.free(k).name << "=" << fmt(st.result()[k], 3);
+        if (scaled_up(st)) b << " (scales set on " << fmt(p.scale_up.edge * 1e3, 3) << " mm cubes)";
         for (const TargetRow& row : target_rows(p, st))
-            if (std::isfinite(row.rel_error) && row.role != "validation")
+            if (std::isfinite(row.rel_error) && is_result_row(st, row.role))
                 b << "; " << row.sand << " " << short_label(row.q) << " " << pct(row.rel_error)
                   << (row.q == Quantity::tension ? " (sigc/sigt " + fmt(row.ratio, 3) + ")" : "");
     }

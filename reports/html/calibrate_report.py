@@ -43,10 +43,16 @@ def build(out_dir):
                 "Solid: the simulated stress vs gauge strain of each packing seed at the calibrated parameters; dashed black: "
                 "the Popovics (1973) curve through the lab means; black cross: the lab's mean peak stress and strain at peak "
                 "± 1 standard deviation.")
-    page.figure(errors_figure(sands, stages), "Target errors per sand",
-                "Relative error (simulated seed mean / lab mean − 1) of each target; green band behind each bar: met (within "
-                f"{tolerance_text(summary)}); grey "
-                "whiskers: the lab's own scatter (± 1 std / mean); hatched: predicted (not fitted) sands.")
+    errors_caption = ("Relative error (simulated seed mean / lab mean − 1) of each target; green band behind each bar: met "
+                      f"(within {tolerance_text(summary)}); grey whiskers: the lab's own scatter (± 1 std / mean)")
+    if has_role(stages, "validation"):
+        page.figure(errors_figure(sands, stages, "validation"), "Target errors on the validation specimens, which the fit never saw",
+                    errors_caption + f"; specimens: {specimens_text(stages[0].get('validation'))}.")
+    scale_up = stages[0].get("scale_up") or {} if stages else {}
+    page.figure(errors_figure(sands, stages), "Target errors per sand" + (" on the scale-up specimens" if scale_up.get("done") else ""),
+                errors_caption + "; hatched: predicted (not fitted) sands."
+                + (f" The scales were set on {specimens_text(scale_up)}: the fit's point run there, its moduli × "
+                   f"{fmt(scale_up.get('alpha'), 4)} and strengths × {fmt(scale_up.get('beta'), 4)}." if scale_up.get("done") else ""))
     tension = summary.get("tension_target") or {}
     if tension.get("source") not in (None, "none"):
         page.figure(ratio_figure(sands, stages, tension), "Compressive over tensile strength per sand",
@@ -113,8 +119,22 @@ def all_targets(stages):
     return [t for st in stages for t in st.get("targets") or []]
 
 
-def target(st, sand, quantity):
-    return next((t for t in st.get("targets") or [] if t.get("sand") == sand and t.get("quantity") == quantity), None)
+def result_role(st, role):
+    """Is a target row of `role` the stage's result on its own specimens? The scale-up rows when the
+    scales were set on the scale-up specimens, else the fit's (fitted and predicted sands)."""
+    if (st.get("scale_up") or {}).get("done"):
+        return role == "scale-up"
+    return role in ("fitted", "predicted")
+
+
+def target(st, sand, quantity, role=None):
+    """The stage's row for `sand` and `quantity`: of `role`, or (None) the result's."""
+    return next((t for t in st.get("targets") or [] if t.get("sand") == sand and t.get("quantity") == quantity
+                 and (t.get("role") == role if role else result_role(st, t.get("role")))), None)
+
+
+def has_role(stages, role):
+    return any(t.get("role") == role for t in all_targets(stages))
 
 
 # ----------------------------------------------------------------------------- headline
@@ -137,6 +157,7 @@ def headline(summary, stages, runs):
     met = sum(1 for t in targets if t.get("met"))
     items = [("objective Σr²", " / ".join(fmt(st.get("objective"), 3) for st in stages), "at the optimum", ""),
              ("targets met", f"{met} of {len(targets)}", tolerance_text(summary), "good" if met == len(targets) else "bad"),
+             *validation_cards(stages),
              ("DEM runs", f"{runs.get('total', summary.get('dem_test_runs', '?'))}",
               f"budget {runs.get('budget', '?')}, {runs.get('from_ledger', 0)} from the ledger, {runs.get('failed', 0)} failed", ""),
              ("wall time", clock(summary.get("wall_seconds")), f"{summary.get('evaluations', '?')} evaluations", "")]
@@ -146,6 +167,18 @@ def headline(summary, stages, runs):
                 items.append((f"{p['name']}" + (f" ({st['label']})" if len(stages) > 1 else ""),
                               f"{fmt(p.get('value'), 4)} {unit_text(p.get('unit'))}", f"± {se_text(p)}", ""))
     return items
+
+
+def validation_cards(stages):
+    """One card per validated stage: does its result hold on the specimens the fit never saw?"""
+    cards = []
+    for st in stages:
+        v = st.get("validation")
+        if v:
+            holds = v.get("holds") is True
+            cards.append(("validation" + (f" ({st['label']})" if len(stages) > 1 else ""), "holds" if holds else "MISSES",
+                          specimens_text(v) + ", never fitted", "good" if holds else "bad"))
+    return cards
 
 
 def clock(seconds):
@@ -204,9 +237,15 @@ def curves_figure(sands, stages, curves):
     return to_svg(fig)
 
 
-def errors_figure(sands, stages):
+def specimens_text(spec):
+    spec = spec or {}
+    return f"{fmt(spec.get('edge_mm'), 3)} mm cubes, packing seeds {', '.join(str(s) for s in spec.get('seeds') or [])}"
+
+
+def errors_figure(sands, stages, role=None):
+    """One bar per sand and target: the result's rows, or those of `role` (e.g. validation)."""
     fig, (ax,) = new_figure(1, width=10.0, height=3.9)
-    groups = [(st, s) for st in stages for s in sands if target(st, s, "modulus")]
+    groups = [(st, s) for st in stages for s in sands if target(st, s, "modulus", role)]
     if not groups:
         message_panel(ax, "no targets in summary.json")
         ax.set_title("Target errors")
@@ -217,7 +256,7 @@ def errors_figure(sands, stages):
     for g, (st, sand) in enumerate(groups):
         k = sands.index(sand)
         for q, (quantity, name, _) in enumerate(QUANTITIES):
-            t = target(st, sand, quantity)
+            t = target(st, sand, quantity, role)
             if not t:
                 continue
             x = g + (q - 1) * width
@@ -248,7 +287,8 @@ def errors_figure(sands, stages):
                 transform=ax.get_xaxis_transform(),
                 ha="center", va="top", fontsize=10, fontweight="bold", color=sand_color(sands.index(sand)))
     ax.set_ylabel("relative error [%]")
-    ax.set_title("Simulated vs lab: error of each target (E chord modulus, σp peak stress, εp strain at peak)")
+    ax.set_title(("Validation specimens" if role == "validation" else "Simulated vs lab")
+                 + ": error of each target (E chord modulus, σp peak stress, εp strain at peak)")
     ax.grid(axis="x", visible=False)
     ax.margins(y=0.15)
     ax.legend(loc="lower left", fontsize=8.5)
@@ -436,6 +476,7 @@ def stage_notes(st, label_it):
 def run_rows(summary, runs):
     return [["DEM test runs", f"{runs.get('total', '?')} of a budget of {runs.get('budget', '?')} ({runs.get('executed_now', '?')} run now, "
              f"{runs.get('from_ledger', '?')} from the ledger, {runs.get('failed', '?')} failed)"],
+            ["scale-up and validation runs", f"{runs.get('scale_up', 0)} and {runs.get('validation', 0)} (apart from the budget)"],
             ["evaluations", str(summary.get("evaluations", "?"))],
             ["wall time", clock(summary.get("wall_seconds"))],
             ["packing seeds per sand", ", ".join(str(s) for s in summary.get("packing_seeds") or [])],

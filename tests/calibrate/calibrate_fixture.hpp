@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,28 @@ inline nlohmann::json synthetic_lab_results(const cal::CubeModel& model, const s
     }
     return out;
 }
+
+/// The stand-in on other specimens: every modulus × `modulus_factor` and every strength × `strength_factor`
+/// (so the strain at peak × strength/modulus), as a larger, better converged cube differs from a small one.
+class ScaledSpecimenModel final : public cal::CubeModel {
+public:
+    ScaledSpecimenModel(double modulus_factor, double strength_factor)
+        : inner_(cal::make_analytic_model(2, 0.001)), modulus_(modulus_factor), strength_(strength_factor) {}
+    void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
+    cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
+        cal::RunOutcome o = inner_->run(q, t);
+        o.modulus_pa *= modulus_;
+        o.peak_pa *= strength_;
+        o.strain_at_peak *= strength_ / modulus_;
+        return o;
+    }
+    std::string fingerprint() const override { return inner_->fingerprint() + "; scaled"; }
+    std::string run_fingerprint(cal::CubeTest t) const override { return inner_->run_fingerprint(t) + "; scaled"; }
+
+private:
+    std::unique_ptr<cal::CubeModel> inner_;
+    double modulus_, strength_;
+};
 
 inline void write_text(const std::filesystem::path& p, const std::string& text) {
     std::ofstream(p) << text;

@@ -28,25 +28,6 @@ fs::path problem_with(const fs::path& dir, const cal::CubeModel& model, const st
                                    "\n[output]\ndir = \"out\"\n");
 }
 
-/// The stand-in with every modulus × `factor`: specimens on which the fitted parameters cannot hold.
-class StifferModel final : public cal::CubeModel {
-public:
-    explicit StifferModel(double factor) : inner_(cal::make_analytic_model(2, 0.001)), factor_(factor) {}
-    void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
-    cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
-        cal::RunOutcome o = inner_->run(q, t);
-        o.modulus_pa *= factor_;
-        o.strain_at_peak /= factor_;
-        return o;
-    }
-    std::string fingerprint() const override { return inner_->fingerprint() + "; stiffer"; }
-    std::string run_fingerprint(cal::CubeTest t) const override { return inner_->run_fingerprint(t) + "; stiffer"; }
-
-private:
-    std::unique_ptr<cal::CubeModel> inner_;
-    double factor_;
-};
-
 }  // namespace
 
 TEST_CASE("validation on unseen seeds: run after the fit, apart from the budget, and reported first", "[calibrate][validation]") {
@@ -92,7 +73,7 @@ TEST_CASE("a result that does not hold on the validation specimens says so plain
     const cal::CalibrationProblem problem =
         cal::load_calibration_problem(problem_with(dir.path, *plain, "[validation]\nseeds = [11, 12]\n"));
     // Validation specimens 15 % stiffer than the fitted ones (as a larger, better converged cube can be).
-    cal::ValidatedModel model(cal::make_analytic_model(2, 0.001), std::make_unique<StifferModel>(1.15), kSands.size(),
+    cal::ValidatedModel model(cal::make_analytic_model(2, 0.001), std::make_unique<test::ScaledSpecimenModel>(1.15, 1.0), kSands.size(),
                                     problem.validation.seeds);
     const cal::CalibrationResult r = cal::run_calibration(problem, model);
     const nlohmann::json summary = cal::summary_json(problem, r);

@@ -24,7 +24,7 @@ import sys
 import tempfile
 
 SKIP = 77
-EXPECTED_FIGURES = {"lab": 3, "lab_tension": 2, "compress": 4, "calibrate": 4}
+EXPECTED_FIGURES = {"lab": 3, "lab_tension": 2, "compress": 4, "calibrate": 5}
 # figures of the study report per study kind (reports/html/study_report.py)
 STUDY_FIGURES = {"gradation_effect": 2, "sensitivity": 1, "resolution": 1, "fines_truncation": 2, "model_form": 3}
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -188,6 +188,11 @@ mode = "joint"
 lab_results = "{lab}/lab_results.json"
 [solver]
 max_runs = 40
+[scale_up]
+edge_mm = 3.5
+seeds = [21]
+[validation]
+seeds = [31]
 [output]
 dir = "{out}"
 ''')
@@ -200,6 +205,9 @@ def case_calibrate(args, browser, work):
     out, stdout = make_calibration(args, work)
     page = os.path.join(out, "report.html")
     check(stdout.rstrip().endswith(f"report: {page}"), f"gradem calibrate does not end with its report's path: {stdout[-300:]}")
+    text = open(page, encoding="utf-8").read()
+    check("validation specimens, which the fit never saw" in text and "on the scale-up specimens" in text
+          and "3.5 mm cubes, packing seeds 21" in text, f"{page}: no validation errors figure or scale-up caption")
     check_self_contained(page)
     return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["calibrate"], banner=True)
 
