@@ -40,7 +40,8 @@ constexpr double kTensionFactor[] = {0.45, 0.40, 0.42};  ///< t_s: σt / σ̄c b
 double law_ductility(const BondParams& b, double h) {
     return visit_bond_law(b.model, [&](auto kernel) {
         using Law = decltype(kernel);
-        if constexpr (requires { Law::analytic_ductility(b.law<Law>(), h); }) return Law::analytic_ductility(b.law<Law>(), h);
+        // A law that declares the hook must take (its parameters, h): another signature fails to compile.
+        if constexpr (requires { &Law::analytic_ductility; }) return Law::analytic_ductility(b.law<Law>(), h);
         else return 0.0;
     });
 }

@@ -121,10 +121,10 @@ struct SoftBondLaw {
     }};
 #pragma GCC diagnostic pop
 
-    /// The analytic stand-in's extra shape index per unit of the sand's ductility coefficient:
-    /// ln(1 + (1 − γ²)/ζ), the bond's fracture energy over its elastic energy at σ̄_c (above).
-    static double analytic_ductility(const SoftBondParams& p) {
-        return std::log(1.0 + (1.0 - p.cut_fraction * p.cut_fraction) / p.softening_factor);
+    /// The analytic stand-in's extra shape index for a sand of ductility coefficient h:
+    /// h ln(1 + (1 − γ²)/ζ), ln of the bond's fracture energy over its elastic energy at σ̄_c (above).
+    static double analytic_ductility(const SoftBondParams& p, double h) {
+        return h * std::log(1.0 + (1.0 - p.cut_fraction * p.cut_fraction) / p.softening_factor);
     }
 
     struct Context {

@@ -295,7 +295,7 @@ static fs::path soft_twin_problem(const fs::path& dir, const cal::CubeModel& mod
                                "[solver]\nmethod = \"scaling\"\nmax_runs = 500\n" + solver_keys + "[output]\ndir = \"out\"\n");
 }
 
-TEST_CASE("twin experiment, soft bond: the shape search moves the softening factor and recovers it; D is reported", "[calibrate]") {
+TEST_CASE("twin experiment, soft bond: the shape search moves the softening factor and recovers it, D is reported", "[calibrate]") {
     TempDir dir("cal-twin-soft");
     auto model = cal::make_analytic_model(2, 0.001);
     const cal::CalibrationProblem problem = cal::load_calibration_problem(soft_twin_problem(dir.path, *model, "tolerance = 0.002\n"));

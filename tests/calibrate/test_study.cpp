@@ -66,7 +66,7 @@ TEST_CASE("study: Student-t quantile and Welch interval", "[calibrate][study]") 
     CHECK(std::isnan(cal::welch_interval({1, 0, 1}, {1, 0, 5}).low));
 }
 
-TEST_CASE("study: gradation_effect gives the seed statistics of the model and a verdict; resumes from the ledger",
+TEST_CASE("study: gradation_effect gives the seed statistics of the model and a verdict, resumes from the ledger",
           "[calibrate][study]") {
     TempDir dir("study-gradation");
     const fs::path summary = calibrated_summary(dir.path);
@@ -210,7 +210,7 @@ TEST_CASE("study: a size sweep of one of the calibration's sands runs that sand 
                Catch::Contains("study.toml:4: key 'study.sands' belongs to kinds \"resolution\" and \"fines_truncation\""));
 }
 
-TEST_CASE("study: model_form tabulates calibrations with their shape index, sigma_c/sigma_t and cost; resumes",
+TEST_CASE("study: model_form tabulates calibrations with their shape index, sigma_c/sigma_t and cost, resumes",
           "[calibrate][study]") {
     TempDir dir("study-model-form");
     const fs::path summary = calibrated_summary(dir.path);

@@ -128,7 +128,7 @@ TEST_CASE("json_number: non-finite values become null, finite ones keep every bi
     CHECK(ordered.is_null());
 }
 
-TEST_CASE("FNV-1a 64: the published test vectors; text keys keep the ledger's offset basis", "[common]") {
+TEST_CASE("FNV-1a 64: the published test vectors, text keys keep the ledger's offset basis", "[common]") {
     auto hash = [](const std::string& s) { return common::fnv1a(s.data(), s.size()); };
     CHECK(hash("") == 0xcbf29ce484222325ull);  // the offset basis itself
     CHECK(hash("a") == 0xaf63dc4c8601ec8cull);

@@ -131,7 +131,7 @@ TEST_CASE("bending moment adds beta R M / I to the tensile stress", "[core][bond
     CHECK(rig.bond().state == BondState::broken_tension);
 }
 
-TEST_CASE("shear break on the predicted step; compression raises the strength by tan(phi)",
+TEST_CASE("shear break on the predicted step, compression raises the strength by tan(phi)",
           "[core][bond]") {
     const double cohesion = 1.0e6, v = 0.93e-3;
     auto break_step = [&](double phi_deg, double precompression_steps) {

@@ -46,7 +46,7 @@ double force_on_b(const BondRig& rig) { return rig.world.particles().force[1].x;
 }  // namespace
 
 TEST_CASE("soft bond / flat joint replacing the contact: a compressed intact pair carries exactly the bond "
-          "stiffness; in parallel the contact's is added", "[core][soft_bond][flat_joint]") {
+          "stiffness, in parallel the contact's is added", "[core][soft_bond][flat_joint]") {
     for (BondModel model : {BondModel::soft_bond, BondModel::flat_joint}) {
         for (bool replaces : {true, false}) {
             INFO(bond_model_name(model) << (replaces ? ", replaces the contact" : ", contact in parallel"));

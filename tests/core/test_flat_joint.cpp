@@ -80,7 +80,7 @@ TEST_CASE("flat joint in uniform tension: every element breaks at sigma_c, on th
 // of this layout lie wholly on one side of the bending axis, so a closed one is closed over
 // its whole extent and carries its full linear stress field.
 TEST_CASE("flat joint in bending breaks element by element along the predicted moment-rotation "
-          "curve; the half-broken joint keeps moment in compression", "[core][flat_joint]") {
+          "curve, the half-broken joint keeps moment in compression", "[core][flat_joint]") {
     BondParams bp = joint(2, 6);
     bp.tensile_strength_mean = 1.0e6;
     bp.cohesion_mean = 1.0e12;
@@ -215,7 +215,7 @@ TEST_CASE("flat joints: the ledger error is first order in dt (breaks), not a bo
     CHECK(fine < 2.0e-3);
 }
 
-TEST_CASE("flat joint homogeneity: moduli and strengths x2 -> forces x2; strengths x2 -> "
+TEST_CASE("flat joint homogeneity: moduli and strengths x2 -> forces x2, strengths x2 -> "
           "first element-break load x2", "[core][flat_joint]") {
     auto trace = [](double modulus_scale, double strength_scale, double path_scale) {
         BondParams bp = joint(2, 4);

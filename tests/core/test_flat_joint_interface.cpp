@@ -40,7 +40,7 @@ Segment disc_below(double c) {
 // A bonded joint pressed to σ and sheared breaks when τ = c̄ + |σ| tan φ̄ (all elements at
 // once: uniform stresses); broken and closed, it then slides at |F_s| = μ_r |F_n|, and it
 // still acts (an interface, not a released bond).
-TEST_CASE("flat joint: the friction angle adds |sigma| tan(phi) to the shear strength; broken and closed, "
+TEST_CASE("flat joint: the friction angle adds |sigma| tan(phi) to the shear strength, broken and closed, "
           "the joint slides at mu_r N", "[core][flat_joint]") {
     for (double phi_deg : {0.0, 30.0}) {
         INFO("phi " << phi_deg);

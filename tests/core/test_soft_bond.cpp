@@ -152,7 +152,7 @@ TEST_CASE("soft bond in pure bending: softening starts at beta k_n R theta = sig
           Approx((1.0 - damage_of(rig)) * rig.stiffness.normal * rig.section.inertia * theta).epsilon(1e-9));
 }
 
-TEST_CASE("soft bond homogeneity: moduli and strengths x2 -> forces x2; strengths x2 -> "
+TEST_CASE("soft bond homogeneity: moduli and strengths x2 -> forces x2, strengths x2 -> "
           "first-damage load x2", "[core][soft_bond]") {
     auto trace = [](double modulus_scale, double strength_scale, double path_scale) {
         BondParams bp = soft_params();

@@ -87,7 +87,7 @@ TEST_CASE("lab: on the study dataset: JSON contract and the generating law recov
     fs::remove_all(out);
 }
 
-TEST_CASE("lab: curves.csv holds every cube's curve, thinned, with its peak; the app hook sees the folder", "[lab][cli]") {
+TEST_CASE("lab: curves.csv holds every cube's curve, thinned, with its peak, the app hook sees the folder", "[lab][cli]") {
     const fs::path out = scratch("curves");
     std::vector<fs::path> hooked;
     std::ostringstream sink;
