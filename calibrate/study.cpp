@@ -136,6 +136,10 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
                                            " is outside the config's bounds: the config changed since the calibration");
         spec.start = v;
     }
+    // With [scale_up] the values are the result set on the scale-up specimens: studies run that size.
+    const bool scaled_up = j.contains("stages") && !j["stages"].empty() && j["stages"][0].contains("scale_up") &&
+                           j["stages"][0]["scale_up"].value("done", false);
+    if (scaled_up) cp.problem.base.specimen.genesis.edge = cp.problem.scale_up.edge;
     cp.values = ParameterSpace(cp.problem.parameters, cp.problem.base.material).start();
     cp.bond_model = bond_model_name(cp.problem.base.material.bond.model);
     if (cp.problem.base.representation != "parallel_bonds")  // the paste as particles

@@ -25,7 +25,8 @@ struct CalibratedPoint {
 
 /// Reads summary.json and its calibration problem; InputError naming the summary when it
 /// does not exist, is not a calibration summary, or no longer matches its config (other
-/// sands, other lab results, a parameter outside the config's bounds).
+/// sands, other lab results, a parameter outside the config's bounds). When the calibration set
+/// its scales on scale-up specimens, the problem's specimen edge is theirs (the result's size).
 CalibratedPoint load_calibrated_point(const std::filesystem::path& summary_json);
 
 /// 95 % two-sided Student-t quantile t_{0.975, dof} (bisection on the exact CDF).

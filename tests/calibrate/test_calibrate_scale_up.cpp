@@ -6,7 +6,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include <toml++/toml.h>
+
 #include "calibrate/problem.hpp"
+#include "calibrate/study.hpp"
 #include "calibrate/validation.hpp"
 #include "calibrate_fixture.hpp"
 #include "reports/calibrated_config.hpp"
@@ -98,6 +101,15 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     const std::string md = cal::summary_markdown(with, r);
     CHECK_THAT(md, Catch::Contains("**Scales set** on 5 mm cubes, packing seeds 21, 22"));
     CHECK_THAT(cal::brief_report(with, r), Catch::Contains("scales set on 5 mm cubes"));
+
+    // The written result is the scale-up's: its calibrated configs and the studies that read
+    // summary.json run the scale-up edge.
+    cal::write_calibration_outputs(with, r);
+    const cal::CalibratedPoint point = cal::load_calibrated_point(with.out_dir / "summary.json");
+    CHECK(point.problem.base.specimen.genesis.edge == Approx(5e-3));
+    CHECK(point.values == st.result());
+    const toml::table calibrated = toml::parse_file((with.out_dir / "calibrated-pre-blended.toml").string());
+    CHECK(calibrated["genesis"]["edge_mm"].value<double>().value_or(0.0) == Approx(5.0));
 
     // A second run serves the scale-up from the ledger.
     const cal::CalibrationResult again = cal::run_calibration(with, model);
