@@ -33,25 +33,29 @@ struct BlockSums {
 
 }  // namespace
 
-// Each particle sums the outputs of its pairs and wall contacts, in slot order.
+// Each particle sums the outputs of its pairs and wall contacts, in slot order. Branch-free
+// (whether the particle is a pair's i or j is a coin flip in a packing in Morton order, and a
+// branch on it mispredicted): as j it adds F and M_j, as i it adds -F and -(M_j + d x F) with
+// d = x_j - x_i, the same bits as subtracting F and M_j + d x F.
 void World::gather_forces() {
     const auto n = static_cast<std::int64_t>(particles_.size());
     ParticleSet& P = particles_;
+    const Vec3* const x = P.position.data();
+    const Incidence* const incidence = incidence_.data();
+    const PairOutput* const out = pair_out_.data();
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
         for (std::int64_t p = begin; p < end; ++p) {
             const auto i = static_cast<std::size_t>(p);
+            const Vec3 xi = x[i];
             Vec3 f, t;
             for (std::int32_t e = incidence_start_[i]; e < incidence_start_[i + 1]; ++e) {
-                const Incidence inc = incidence_[static_cast<std::size_t>(e)];
-                const PairOutput& o = pair_out_[static_cast<std::size_t>(inc.slot)];
-                if (inc.partner >= 0) {  // this particle is j
-                    f += o.force_j;
-                    t += o.torque_j;
-                } else {                 // this particle is i
-                    const Vec3 d = P.position[static_cast<std::size_t>(~inc.partner)] - P.position[i];
-                    f -= o.force_j;
-                    t -= o.torque_j + cross(d, o.force_j);
-                }
+                const Incidence inc = incidence[e];
+                const PairOutput& o = out[inc.slot];
+                const bool as_j = inc.partner >= 0;
+                const std::int32_t partner = as_j ? inc.partner : ~inc.partner;
+                const Vec3 d = x[partner] - xi;  // used as i only
+                f += select(as_j, o.force_j, -o.force_j);
+                t += select(as_j, o.torque_j, -(o.torque_j + cross(d, o.force_j)));
             }
             for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
                 f += wall_out_[static_cast<std::size_t>(w)].force;
