@@ -1,5 +1,6 @@
 // One DEM cycle (see world.hpp for the phase list and the determinism argument).
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -132,9 +133,9 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
             // records read for one byte)
             const bool open = norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb);
             if (open || (bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)]))) {
-                if (p.shear_force.x != 0.0 || p.shear_force.y != 0.0 || p.shear_force.z != 0.0 ||
-                    std::signbit(p.shear_force.x) || std::signbit(p.shear_force.y) || std::signbit(p.shear_force.z))
-                    p.shear_force = {};  // stays +0 without a store (the record is not written back)
+                const Vec3& v = p.shear_force;  // stays +0 without a store (the record is not written back)
+                if ((std::bit_cast<std::uint64_t>(v.x) | std::bit_cast<std::uint64_t>(v.y) | std::bit_cast<std::uint64_t>(v.z)) != 0)
+                    p.shear_force = {};
                 out = {};
                 continue;
             }
