@@ -6,9 +6,11 @@
 // prints nothing but errors and, with --json, the JSON rows.
 //
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json] [--quiet]
-//                [--models M1,M2,...]   (one row set per bond law of core/bond_models.hpp, each with
-//                its default parameters; its rows carry the law's descriptive parameters, e.g. a
-//                joint's element counts)
+//                [--models M1,M2,...]   (one row set per bond law of core/bond_models.hpp; its rows
+//                carry the law's descriptive parameters, e.g. a joint's element counts)
+//                [--specimens 20000,200000] [--cache-dir DIR] [--bond-gap-um G] [--bonded-fractions 1,0.75]
+//                (rows on genesis packings of the pre-blended sand, bonded as a calibration does:
+//                bench/specimen_bench.hpp; without --sizes, only these)
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
 //                at size ratios 1, 10, 50 instead: bench/neighbor_bench.cpp)
 //   gradem-bench --genesis 20000,200000 [--json]   (genesis rows instead: bench/genesis_bench.cpp)
@@ -31,6 +33,8 @@
 #include "core/parallel.hpp"
 #include "bench/full_cube_bench.hpp"
 #include "bench/genesis_bench.hpp"
+#include "bench/specimen_bench.hpp"
+#include "core/flat_joint_law.hpp"
 #include "core/world.hpp"
 #include "experiments/platen_compression.hpp"
 #include "experiments/quick_packing.hpp"
@@ -49,8 +53,12 @@ struct Options {
     std::int64_t neighbors = 0;  ///< > 0: neighbour-search rows for this many particles
     std::vector<std::int64_t> genesis;  ///< genesis rows at these grain counts (then nothing else)
     bool full_cube = false;             ///< the full-size cube's figures (then nothing else)
-    bool steps_given = false;
+    bool steps_given = false, sizes_given = false;
     std::vector<BondModel> models{BondModel::parallel_bond};
+    std::vector<std::int64_t> specimens;          ///< genesis specimens of about these grain counts
+    std::string cache_dir = "out/packing-cache";  ///< their packing cache
+    double gap_um = 0.0;                          ///< bonding gap on specimens [um]; 0: the law's default
+    std::vector<double> bonded_fractions{1.0, 0.75};  ///< flat joint rows: φ_B (the rest slit)
     bench::FullCubeOptions cube;        ///< --full-cube settings
 };
 
@@ -64,6 +72,7 @@ std::string model_list() {
 const std::string kHelp =
     "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] [--repeat R] [--json] [--quiet]\n"
     "                    [--models " + model_list() + "]\n"
+    "                    [--specimens N1,N2,...] [--cache-dir DIR] [--bond-gap-um G] [--bonded-fractions F1,F2]\n"
     "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
     "       gradem-bench --genesis N1,N2,... [--json]\n"
     "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
@@ -77,6 +86,11 @@ const std::string kHelp =
     "  --threads 1,2         OpenMP thread counts (--full-cube: the last one)\n"
     "  --repeat R            runs per row, the median is printed (default 3)\n"
     "  --models M1,M2        bond laws, one row set each (default parallel_bond)\n"
+    "  --specimens N1,N2     rows on genesis packings of the pre-blended sand of about these grain counts,\n"
+    "                        bonded as a calibration does (without --sizes: only these rows)\n"
+    "  --cache-dir DIR       packing cache of --specimens (default out/packing-cache)\n"
+    "  --bond-gap-um G       bonding gap on --specimens [um] (default: 70, flat joint 20)\n"
+    "  --bonded-fractions F  flat joint rows: fractions of bonded joints, the rest slit (default 1,0.75)\n"
     "  --neighbors N         neighbour-search rows at size ratios 1, 10, 50 instead\n"
     "  --genesis N1,N2,...   genesis rows instead\n"
     "  --full-cube           the full-size cube's N, memory, seconds per 1000 steps and whole-test estimate\n"
@@ -101,7 +115,11 @@ Options parse(int argc, char** argv) {
     for (bench::ArgReader args(argc, argv); args.next();) {
         const std::string a = args.arg();
         auto value = [&] { return args.value(); };
-        if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value(), a);
+        if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value(), a), o.sizes_given = true;
+        else if (a == "--specimens") o.specimens = parse_list<std::int64_t>(value(), a);
+        else if (a == "--cache-dir") o.cache_dir = value();
+        else if (a == "--bond-gap-um") o.gap_um = parse_one<double>(value(), a);
+        else if (a == "--bonded-fractions") o.bonded_fractions = parse_list<double>(value(), a);
         else if (a == "--threads") o.threads = parse_list<int>(value(), a);
         else if (a == "--steps") o.steps = parse_one<std::int64_t>(value(), a), o.steps_given = true;
         else if (a == "--full-cube") o.full_cube = true;
@@ -130,6 +148,12 @@ Options parse(int argc, char** argv) {
     }
     if (o.steps < 1 || o.repeat < 1 || o.sizes.empty() || o.threads.empty())
         throw bench::UsageError("--steps, --repeat, --sizes and --threads must be positive");
+    for (double f : o.bonded_fractions)
+        if (!(f >= 0.0 && f <= 1.0)) throw bench::UsageError("--bonded-fractions must lie in [0, 1]");
+    for (std::int64_t n : o.specimens)
+        if (n < 100) throw bench::UsageError("--specimens must be at least 100 grains");
+    if (!(o.gap_um >= 0.0)) throw bench::UsageError("--bond-gap-um must be >= 0");
+    if (!o.specimens.empty() && !o.sizes_given) o.sizes.clear();
     if (!(o.cube.min_diameter > 0.0) || o.cube.timed < 1000 || !(o.cube.transits_to_stop > 0.0) || !(o.cube.time_step >= 0.0))
         throw bench::UsageError("--min-diameter-mm and --transits must be > 0, --time-step >= 0, --timed >= 1000");
     return o;
@@ -137,18 +161,54 @@ Options parse(int argc, char** argv) {
 
 using bench::peak_rss_bytes;
 
+/// Acting bonds at the end of a run, by the path the flat joint's pass takes them: fully
+/// bonded (the vectorised pass), partly bonded, and unbonded interfaces (slit, gapped or broken
+/// joints still in compression); for the other laws every acting bond is "fully bonded".
+struct JointCounts {
+    std::int64_t fully_bonded = 0, partly_bonded = 0, unbonded = 0;
+};
+
+JointCounts count_joints(const World& world) {
+    JointCounts c;
+    const auto& bonds = world.bonds();
+    for (std::size_t k = 0; k < bonds.size(); ++k) {
+        if (!bond_acts(bonds[k])) continue;
+        if (bonds[k].model != BondModel::flat_joint) {
+            ++c.fully_bonded;
+            continue;
+        }
+        const std::span<const double> side = world.bond_side_state(k);
+        const std::size_t elements = (side.size() - kFlatJointHeader) / kFlatElementSize;
+        std::size_t bonded = 0;
+        for (std::size_t e = 0; e < elements; ++e) bonded += flat_joint_element_bonded(side, e);
+        ++(bonded == elements ? c.fully_bonded : bonded > 0 ? c.partly_bonded : c.unbonded);
+    }
+    return c;
+}
+
+/// One row's set-up: the packing it runs on and the bonds.
+struct RowCase {
+    const char* packing = "lattice";      ///< "lattice" (quick packing) or "genesis"
+    const exp::QuickPacking* lattice = nullptr;
+    const exp::Packing* specimen = nullptr;
+    bench::BondCase bond;
+};
+
 struct Sample {
-    BondModel model = BondModel::parallel_bond;
+    RowCase row;
+    BondParams bond_params;
+    double gap_um = 0.0;  ///< the bonding gap used [um]
     std::int64_t n = 0, bonds = 0, steps = 0;
     int threads = 1;
     double seconds = 0, build_seconds = 0;
     StepProfile profile;
     std::size_t world_bytes = 0, rss = 0;
     std::int64_t contacts = 0, pairs = 0;
+    JointCounts joints;
 };
 
-// A bonded packing between platens closing at a strain rate of 1/s (typical test speed).
-World make_world(const exp::QuickPacking& packing, BondModel model = BondModel::parallel_bond) {
+// A bonded lattice packing between platens closing at a strain rate of 1/s (typical test speed).
+World make_world(const exp::QuickPacking& packing, const bench::BondCase& c = {}) {
     ContactParams contact;
     contact.effective_modulus = 10.0e9;
     contact.stiffness_ratio = 1.5;
@@ -160,8 +220,9 @@ World make_world(const exp::QuickPacking& packing, BondModel model = BondModel::
     bond.tensile_strength_std = 1.6e6;
     bond.cohesion_mean = 16.0e6;
     bond.cohesion_std = 3.2e6;
-    bond.model = model;
-    world.install_bonds(bond, packing.bond_gap);
+    bond.model = c.model;
+    bond.law<FlatJointLaw>().bonded_fraction = c.bonded_fraction;
+    world.install_bonds(bond, c.gap_um > 0.0 ? 1e-6 * c.gap_um : packing.bond_gap);
     exp::add_platens(world, 0.5);
     const double height = world.walls()[1].point.z - world.walls()[0].point.z;
     world.wall(0).velocity = {0, 0, 0.5 * height};
@@ -169,20 +230,29 @@ World make_world(const exp::QuickPacking& packing, BondModel model = BondModel::
     return world;
 }
 
-Sample run_once(const exp::QuickPacking& packing, int threads, std::int64_t steps,
-                BondModel model = BondModel::parallel_bond) {
+World make_row_world(const RowCase& row, double& gap_um) {
+    if (row.specimen) {
+        gap_um = row.bond.gap_um > 0.0 ? row.bond.gap_um : bench::default_gap_um(row.bond.model);
+        return bench::specimen_world(*row.specimen, row.bond);
+    }
+    gap_um = row.bond.gap_um > 0.0 ? row.bond.gap_um : 1e6 * row.lattice->bond_gap;
+    return make_world(*row.lattice, row.bond);
+}
+
+Sample run_once(const RowCase& row, int threads, std::int64_t steps) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #endif
     Sample s;
+    s.row = row;
     const auto t0 = std::chrono::steady_clock::now();
-    World world = make_world(packing, model);
+    World world = make_row_world(row, s.gap_um);
     world.run(20);  // first neighbour build, time step, caches warm
     const auto t1 = std::chrono::steady_clock::now();
     const StepProfile before = world.profile();
     world.run(steps);
     const auto t2 = std::chrono::steady_clock::now();
-    s.model = model;
+    s.bond_params = world.bond_params();
     s.n = static_cast<std::int64_t>(world.particles().size());
     s.bonds = static_cast<std::int64_t>(world.intact_bond_count());
     s.steps = steps;
@@ -200,6 +270,7 @@ Sample run_once(const exp::QuickPacking& packing, int threads, std::int64_t step
     s.rss = peak_rss_bytes();
     s.pairs = static_cast<std::int64_t>(world.pair_count());
     s.contacts = static_cast<std::int64_t>(world.active_contact_count());
+    s.joints = count_joints(world);
     if (world.status() != RunStatus::running) bench::warn("gradem-bench", "run diverged: " + world.status_reason());
     return s;
 }
@@ -209,40 +280,96 @@ Sample median_of(std::vector<Sample> runs) {
     return runs[runs.size() / 2];
 }
 
+/// The law's descriptive parameters as JSON members ("radial_elements": 1, ...).
+void print_law_rows(const BondParams& params) {
+    visit_bond_law(params.model, [&](auto kernel) {
+        using Law = decltype(kernel);
+        const typename Law::Params& own = law_params<Law>(params);
+        for (const auto& row : Law::kParameters) {
+            if (!row.descriptive) continue;
+            if (row.field.integer)
+                std::printf("\"%.*s\": %lld, ", static_cast<int>(row.key.size()), row.key.data(),
+                            static_cast<long long>(row.field.get_int(own)));
+            else std::printf("\"%.*s\": %.6g, ", static_cast<int>(row.key.size()), row.key.data(), row.field.get(own));
+        }
+    });
+}
+
 void print_sample(const Sample& s, double speedup, bool json) {
     const double pss = static_cast<double>(s.n) * static_cast<double>(s.steps) / s.seconds;
     const double per = static_cast<double>(s.n);
+    const bool joint = s.bond_params.model == BondModel::flat_joint;
+    const double bonded_fraction = joint ? s.bond_params.law<FlatJointLaw>().bonded_fraction : 1.0;
+    const JointCounts& j = s.joints;
+    const double acting = static_cast<double>(j.fully_bonded + j.partly_bonded + j.unbonded);
+    const double scalar_share = acting > 0 ? static_cast<double>(j.partly_bonded + j.unbonded) / acting : 0.0;
     if (json) {
-        std::printf("{\"model\": \"%s\", ", bond_model_name(s.model));
-        visit_bond_law(s.model, [](auto kernel) {  // the law's descriptive rows at their defaults
-            using Law = decltype(kernel);
-            const typename Law::Params defaults{};
-            for (const auto& row : Law::kParameters) {
-                if (!row.descriptive) continue;
-                if (row.field.integer)
-                    std::printf("\"%.*s\": %lld, ", static_cast<int>(row.key.size()), row.key.data(),
-                                static_cast<long long>(row.field.get_int(defaults)));
-                else std::printf("\"%.*s\": %.6g, ", static_cast<int>(row.key.size()), row.key.data(), row.field.get(defaults));
-            }
-        });
+        std::printf("{\"model\": \"%s\", ", bond_model_name(s.bond_params.model));
+        print_law_rows(s.bond_params);
         std::printf("\"n\": %lld, \"bonds\": %lld, \"pairs\": %lld, \"contacts\": %lld, \"threads\": %d, "
                     "\"steps\": %lld, \"seconds\": %.4f, \"particle_steps_per_s\": %.4g, "
                     "\"neighbors_s\": %.4f, \"contacts_s\": %.4f, \"bonds_s\": %.4f, \"walls_s\": %.4f, "
                     "\"integrate_s\": %.4f, \"rebuilds\": %lld, \"bytes_per_particle\": %.1f, "
-                    "\"peak_rss_bytes_per_particle\": %.1f, \"speedup_vs_1_thread\": %.3f}\n",
+                    "\"peak_rss_bytes_per_particle\": %.1f, \"speedup_vs_1_thread\": %.3f, "
+                    "\"packing\": \"%s\", \"bond_gap_um\": %.4g, \"bonded_fraction\": %.4g, \"slit_fraction\": %.4g, "
+                    "\"joints_fully_bonded\": %lld, \"joints_partly_bonded\": %lld, \"joints_unbonded\": %lld, "
+                    "\"scalar_path_share\": %.4f}\n",
                     static_cast<long long>(s.n), static_cast<long long>(s.bonds),
                     static_cast<long long>(s.pairs), static_cast<long long>(s.contacts), s.threads,
                     static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                     s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
                     static_cast<long long>(s.profile.rebuilds), static_cast<double>(s.world_bytes) / per,
-                    static_cast<double>(s.rss) / per, speedup);
+                    static_cast<double>(s.rss) / per, speedup, s.row.packing, s.gap_um, bonded_fraction,
+                    joint ? 1.0 - bonded_fraction - s.bond_params.law<FlatJointLaw>().gapped_fraction : 0.0,
+                    static_cast<long long>(j.fully_bonded), static_cast<long long>(j.partly_bonded),
+                    static_cast<long long>(j.unbonded), scalar_share);
         return;
     }
-    std::printf("%-13s %9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f\n",
-                bond_model_name(s.model), static_cast<long long>(s.n), static_cast<long long>(s.bonds), s.threads,
+    std::printf("%-11s %-7s %4.2f %5.0f %9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f\n",
+                bond_model_name(s.bond_params.model), s.row.packing, bonded_fraction, s.gap_um,
+                static_cast<long long>(s.n), static_cast<long long>(s.bonds), s.threads,
                 static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                 s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
                 static_cast<double>(s.world_bytes) / per, static_cast<double>(s.rss) / per, speedup);
+}
+
+/// Every (model, bonded fraction) of the options on one packing: its rows for each thread count.
+void run_rows(const Options& o, RowCase row) {
+    for (BondModel model : o.models) {
+        const std::vector<double> fractions =
+            model == BondModel::flat_joint ? o.bonded_fractions : std::vector<double>{1.0};
+        for (double fraction : fractions) {
+            row.bond.model = model;
+            row.bond.bonded_fraction = fraction;
+            double base_seconds = 0.0;
+            for (int t : o.threads) {
+                std::vector<Sample> runs;
+                for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(row, t, o.steps));
+                const Sample m = median_of(runs);
+                if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
+                const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
+                print_sample(m, speedup, o.json);
+                std::fflush(stdout);
+            }
+        }
+    }
+}
+
+/// The genesis specimen of about `grains` grains (cached), with a line saying how it was had.
+exp::Packing specimen_for_rows(const Options& o, std::int64_t grains) {
+    double seconds = 0.0;
+    bool cached = false;
+    exp::Packing k = bench::specimen_packing(grains, o.cache_dir, seconds, cached);
+    if (o.json)
+        std::printf("{\"kind\": \"specimen\", \"n\": %zu, \"edge_mm\": %.4f, \"cached\": %s, \"genesis_seconds\": %.2f, "
+                    "\"genesis_threads\": %d, \"porosity\": %.4f, \"cache_dir\": \"%s\"}\n",
+                    k.radius.size(), 1e3 * k.edge(), cached ? "true" : "false", cached ? k.seconds : seconds,
+                    thread_count(), k.porosity, o.cache_dir.c_str());
+    else
+        std::printf("specimen: %zu grains of the pre-blended sand, %.3f mm cube, %s (genesis %.1f s)\n", k.radius.size(),
+                    1e3 * k.edge(), cached ? "from the packing cache" : "generated and cached", cached ? k.seconds : seconds);
+    std::fflush(stdout);
+    return k;
 }
 
 }  // namespace
@@ -258,7 +385,9 @@ std::size_t peak_rss_bytes() {
 }
 
 TimedRun time_bonded_run(const exp::QuickPacking& packing, int threads, std::int64_t steps) {
-    const Sample s = run_once(packing, threads, steps);
+    RowCase row;
+    row.lattice = &packing;
+    const Sample s = run_once(row, threads, steps);
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #endif
@@ -290,28 +419,27 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (!o.json) {
-            std::printf("gradem-bench: bonded packing (radius ratio 3) between closing platens; "
-                        "median of %d runs\n", o.repeat);
-            std::printf("%-13s %9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s\n", "model", "N",
-                        "bonds", "thr", "steps", "seconds", "p-steps/s", "neigh", "contact",
-                        "bonds", "walls", "integr", "B/p", "RSS/p", "speedup");
+            std::printf("gradem-bench: bonded packings (lattice: radius ratio 3; genesis: the pre-blended sand) "
+                        "between closing platens; median of %d runs\n", o.repeat);
+            std::printf("%-11s %-7s %4s %5s %9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s\n", "model",
+                        "packing", "fB", "gapum", "N", "bonds", "thr", "steps", "seconds", "p-steps/s", "neigh",
+                        "contact", "bonds", "walls", "integr", "B/p", "RSS/p", "speedup");
         }
         for (std::int64_t n : o.sizes) {
             exp::QuickPackingSpec spec;
             spec.target_count = n;
             const exp::QuickPacking packing = exp::make_quick_packing(spec);
-            for (BondModel model : o.models) {
-                double base_seconds = 0.0;
-                for (int t : o.threads) {
-                    std::vector<Sample> runs;
-                    for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(packing, t, o.steps, model));
-                    const Sample m = median_of(runs);
-                    if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
-                    const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
-                    print_sample(m, speedup, o.json);
-                    std::fflush(stdout);
-                }
-            }
+            RowCase row;
+            row.lattice = &packing;
+            run_rows(o, row);
+        }
+        for (std::int64_t n : o.specimens) {
+            const exp::Packing specimen = specimen_for_rows(o, n);
+            RowCase row;
+            row.packing = "genesis";
+            row.specimen = &specimen;
+            row.bond.gap_um = o.gap_um;
+            run_rows(o, row);
         }
         return 0;
     });

@@ -62,7 +62,9 @@ struct ParallelBond {
     std::uint8_t family_pair = 0;  ///< its parameters: World::bond_family_params()[family_pair]
     /// 1 while a bond that is not (or no longer) bonded still acts as an interface (a flat
     /// joint whose elements are all unbonded: it carries compression and friction until its
-    /// surfaces separate); its law keeps stepping it, and it replaces the pair's contact.
+    /// surfaces separate); its law keeps stepping it, and it replaces the pair's contact. A flat
+    /// joint that is intact but has an unbonded element holds 2 (kPartlyBonded,
+    /// flat_joint_law.hpp), so its pass tells fully bonded joints from the record alone.
     std::uint8_t interface = 0;
     double tensile_strength = 0.0; ///< σ̄_c [Pa]
     double cohesion = 0.0;         ///< c̄ [Pa]

@@ -16,9 +16,18 @@
 // part of [r0, r1] are exact polynomials; the angular integral is Gauss-Legendre (one node per
 // 2π/32 at least, 4 per element at least) on each piece between the angles where the zero line
 // crosses the element's arcs, so each piece integrates a smooth function.
+//
+// Speed (the law's slit and broken joints spend most of their time here): an element the zero
+// line does not cut along its arcs is one piece whose nodes are the element's own, so their
+// cos/sin and weights are tabulated once (FlatElementGeometry::node_cos, ...); a cut piece takes
+// its nodes' cos/sin from sincos (the same libm call the per-node code made), then the ray
+// integrals of all its nodes in one branch-free loop the compiler vectorises, then the sums in
+// node order. Every value is computed by the same IEEE operations as before, so the results
+// are bitwise those of the node-by-node code (the pinned hashes, tests/core/test_determinism.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <math.h>  // sincos (GNU)
 #include <utility>
 #include <vector>
 
@@ -37,7 +46,17 @@ struct FlatElementGeometry {
     double a0 = 0, a1 = 0;             ///< angular bounds [rad]
     double reach = 0;                  ///< max distance from the centroid to a point of the element
     std::vector<double> node, weight;  ///< angular Gauss-Legendre rule on [-1, 1]
+    /// The rule on the whole element [a0, a1] (the uncut piece): cos and sin of the node angles
+    /// mid + half node_q and the weights half weight_q (mid, half: the piece's centre and half width).
+    std::vector<double> node_cos, node_sin, node_weight;
 };
+
+/// Most angular nodes per piece (the rule has max(4, ceil(32 / N_α)) <= 32).
+inline constexpr std::size_t kMaxAngularNodes = 32;
+
+/// cos a, sin a of a node angle: one libm sincos, the call GCC made of the std::cos/std::sin
+/// pair of the node-by-node code (so the same bits).
+inline void node_trig(double a, double& c, double& s) { ::sincos(a, &s, &c); }
 
 /// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_m; exact to round-off).
 inline std::pair<std::vector<double>, std::vector<double>> gauss_legendre(int m) {
@@ -112,6 +131,14 @@ inline std::vector<FlatElementGeometry> flat_joint_elements(std::int32_t nr, std
             g.reach = detail::sector_reach(g, a0, a1);
             g.node = gx;
             g.weight = gw;
+            const double mid = 0.5 * (a0 + a1), half = 0.5 * (a1 - a0);  // as compressed_part's uncut piece
+            for (std::size_t q = 0; q < gx.size(); ++q) {
+                double c = 0, s = 0;
+                node_trig(mid + half * gx[q], c, s);
+                g.node_cos.push_back(c);
+                g.node_sin.push_back(s);
+                g.node_weight.push_back(half * gw[q]);
+            }
             out.push_back(std::move(g));
         }
     }
@@ -123,22 +150,18 @@ struct RayIntegrals {
     double i1 = 0, i2 = 0, e1 = 0;
 };
 
+/// Branch-free (selects; the loop over nodes vectorises): the compressed part [a, b] of the ray,
+/// γ + sρ < 0, and its polynomial integrals, or zeros when it is empty.
 inline RayIntegrals compressed_ray(double gamma, double s, double r0, double r1) {
-    double a = r0, b = r1;  // the compressed part [a, b]: γ + sρ < 0
-    if (s == 0.0) {
-        if (!(gamma < 0.0)) return {};
-    } else {
-        const double root = -gamma / s;
-        if (s > 0.0) b = std::min(b, root);
-        else a = std::max(a, root);
-        if (!(b > a)) return {};
-    }
+    const double root = -gamma / s;  // s = 0: not used
+    const double b = s > 0.0 ? std::min(r1, root) : r1;
+    const double a = s < 0.0 ? std::max(r0, root) : r0;
+    const bool empty = s == 0.0 ? !(gamma < 0.0) : !(b > a);
     const double a2 = a * a, b2 = b * b, a3 = a2 * a, b3 = b2 * b, a4 = a2 * a2, b4 = b2 * b2;
-    RayIntegrals r;
-    r.i1 = gamma * (b2 - a2) / 2.0 + s * (b3 - a3) / 3.0;
-    r.i2 = gamma * (b3 - a3) / 3.0 + s * (b4 - a4) / 4.0;
-    r.e1 = gamma * gamma * (b2 - a2) / 2.0 + 2.0 * gamma * s * (b3 - a3) / 3.0 + s * s * (b4 - a4) / 4.0;
-    return r;
+    const double i1 = gamma * (b2 - a2) / 2.0 + s * (b3 - a3) / 3.0;
+    const double i2 = gamma * (b3 - a3) / 3.0 + s * (b4 - a4) / 4.0;
+    const double e1 = gamma * gamma * (b2 - a2) / 2.0 + 2.0 * gamma * s * (b3 - a3) / 3.0 + s * s * (b4 - a4) / 4.0;
+    return {empty ? 0.0 : i1, empty ? 0.0 : i2, empty ? 0.0 : e1};
 }
 
 /// The compressed part of one element of the unit disc under g = γ + w.ξ (ξ, w in (t1, t2)
@@ -180,23 +203,55 @@ inline AngularCuts angular_pieces(const FlatElementGeometry& g, double gamma, do
 
 }  // namespace detail
 
+namespace detail {
+
+/// One piece's nodes: cos, sin and weight of each [-], and the count.
+struct PieceNodes {
+    double c[kMaxAngularNodes], s[kMaxAngularNodes], w[kMaxAngularNodes];
+    std::size_t count = 0;
+};
+
+/// Adds the piece's nodes to `out`, in node order: F += w i1, P += w i2 (cos, sin), U += w e1.
+inline void add_piece(CompressedPart& out, const double* c, const double* sn, const double* w, std::size_t count,
+                      double gamma, double wy, double wz, double r0, double r1) {
+    double tf[kMaxAngularNodes], ty[kMaxAngularNodes], tz[kMaxAngularNodes], te[kMaxAngularNodes];
+    for (std::size_t q = 0; q < count; ++q) {  // vectorised: the ray integrals of every node
+        const RayIntegrals r = compressed_ray(gamma, wy * c[q] + wz * sn[q], r0, r1);
+        tf[q] = w[q] * r.i1;
+        ty[q] = w[q] * r.i2 * c[q];
+        tz[q] = w[q] * r.i2 * sn[q];
+        te[q] = w[q] * r.e1;
+    }
+    for (std::size_t q = 0; q < count; ++q) {  // the sums in node order
+        out.force += tf[q];
+        out.py += ty[q];
+        out.pz += tz[q];
+        out.energy += te[q];
+    }
+}
+
+}  // namespace detail
+
 /// Radial integrals exact, angular Gauss-Legendre on each piece between kinks (so the rule
 /// integrates a smooth function on each): measured against the closed-form disc integrals to
 /// 5e-6 relative or better (tests/core/test_flat_joint_interface.cpp).
 inline CompressedPart compressed_part(const FlatElementGeometry& g, double gamma, double wy, double wz) {
     CompressedPart out;
     const detail::AngularCuts cuts = detail::angular_pieces(g, gamma, wy, wz);
+    const std::size_t n = std::min(g.node.size(), kMaxAngularNodes);
+    if (cuts.count == 2 && g.node_cos.size() == n) {  // uncut: the element's own tabulated nodes
+        detail::add_piece(out, g.node_cos.data(), g.node_sin.data(), g.node_weight.data(), n, gamma, wy, wz, g.r0, g.r1);
+        return out;
+    }
+    detail::PieceNodes nodes;
+    nodes.count = n;
     for (int piece = 0; piece + 1 < cuts.count; ++piece) {
         const double mid = 0.5 * (cuts.at[piece] + cuts.at[piece + 1]), half = 0.5 * (cuts.at[piece + 1] - cuts.at[piece]);
-        for (std::size_t q = 0; q < g.node.size(); ++q) {
-            const double a = mid + half * g.node[q], w = half * g.weight[q];
-            const double ca = std::cos(a), sa = std::sin(a);
-            const RayIntegrals r = compressed_ray(gamma, wy * ca + wz * sa, g.r0, g.r1);
-            out.force += w * r.i1;
-            out.py += w * r.i2 * ca;
-            out.pz += w * r.i2 * sa;
-            out.energy += w * r.e1;
+        for (std::size_t q = 0; q < n; ++q) {
+            node_trig(mid + half * g.node[q], nodes.c[q], nodes.s[q]);
+            nodes.w[q] = half * g.weight[q];
         }
+        detail::add_piece(out, nodes.c, nodes.s, nodes.w, n, gamma, wy, wz, g.r0, g.r1);
     }
     return out;
 }

@@ -27,6 +27,9 @@
 // Joint types (Potyondy 2012 §2; PFC fj_mtype), drawn per joint with the strength seed:
 // bonded (φ_B: every element bonded, g_0 = 0), gapped (φ_G: unbonded, initial gap
 // g_0 = gap_ratio R̄) and slit (the rest: unbonded, g_0 = 0).
+// ParallelBond::interface of a joint: 0 every element bonded, kPartlyBonded (2) intact with an
+// unbonded element (so the vectorised pass, world_flat_joints.cpp, tells the fully bonded joints
+// from the bond record alone, without reading the element flags of the side state), 1 none bonded.
 // A joint with no bonded element stays an interface (BondState none for slit and gapped joints,
 // broken_* once its last element broke; ParallelBond::interface = 1) until its surfaces have
 // separated: every element open AND the pair's surface gap beyond the installation reach
@@ -92,6 +95,8 @@ inline constexpr std::size_t stiffness_scale = 10; ///< (R_A+R_B)/(R_A+R_B+g) or
 inline constexpr std::size_t release_gap = 11;     ///< surface gap beyond which a separated joint is released [m]
 }  // namespace flat_side
 inline constexpr std::size_t kFlatJointHeader = 12, kFlatElementSize = 3;
+/// ParallelBond::interface of an intact joint with at least one unbonded element.
+inline constexpr std::uint8_t kPartlyBonded = 2;
 
 inline bool flat_joint_element_bonded(std::span<const double> s, std::size_t e) {
     return s[kFlatJointHeader + e * kFlatElementSize] != 0.0;
@@ -366,7 +371,7 @@ struct FlatJointLaw {
         const double g0 = side[flat_side::initial_gap];
 
         JointSums sum;
-        bool any_bonded = false, all_open = true;
+        bool any_bonded = false, all_bonded = true, all_open = true;
         BondState last_mode = BondState::intact;
         for (std::size_t e = 0; e < c.elements.size(); ++e) {
             const FlatElementGeometry& g = c.elements[e];
@@ -409,8 +414,10 @@ struct FlatJointLaw {
             sum.p2 += load.p2;
             sum.twist += t.xy * t.s2 - t.xz * t.s1 - (bonded ? js.ksR4 * g.polar * f.twist : 0.0);
             any_bonded = any_bonded || bonded;
+            all_bonded = all_bonded && bonded;
             all_open = all_open && load.open;
         }
+        if (any_bonded) b.interface = all_bonded ? 0 : kPartlyBonded;  // intact here
         if (!any_bonded) {
             if (b.state == BondState::intact) {  // the last element broke: an unbonded interface now
                 b.state = last_mode == BondState::intact ? BondState::broken_tension : last_mode;

@@ -214,7 +214,7 @@ BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
     for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BondEnergy e;
         std::vector<BondBreak> breaks;
-        auto lanes = std::make_unique<JointLanes>();
+        auto lanes = std::make_unique_for_overwrite<JointLanes>();  // no zero-fill of 20 kB per block
         JointLanes& L = *lanes;
         std::int8_t which[kJointLanes];  // per bond of the batch: its lane, -1 scalar or not acting
         // A joint through the law's scalar kernel, as the generic bond phase does.
@@ -278,20 +278,25 @@ BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
             // 1. scan: the fully bonded joints into lanes
             for (std::int64_t k = b0; k < b1; ++k) {
                 if (k + kPrefetchAhead < end) {
-                    const auto jn = static_cast<std::size_t>(bonds[static_cast<std::size_t>(k + kPrefetchAhead)].j);
+                    const auto ka = static_cast<std::size_t>(k + kPrefetchAhead);
+                    const auto jn = static_cast<std::size_t>(bonds[ka].j);
                     __builtin_prefetch(&particles.position[jn]);
                     __builtin_prefetch(&particles.velocity[jn]);
                     __builtin_prefetch(&particles.spin[jn]);
+                    // the joint's own streams: its side state (the lines with the header and the
+                    // element shears) and its bond record further on, its constants
+                    const char* side_ahead = reinterpret_cast<const char*>(side_data + ka * stride);
+                    for (std::size_t line = 0; line < stride * sizeof(double); line += 64)
+                        __builtin_prefetch(side_ahead + line, 1);
+                    __builtin_prefetch(&bonds[std::min(ka + kPrefetchAhead, bonds.size() - 1)], 1);
+                    __builtin_prefetch(&constants[ka]);
                 }
                 const auto slot = static_cast<std::size_t>(k - b0);
                 which[slot] = -1;
                 const ParallelBond& b = bonds[static_cast<std::size_t>(k)];
+                // fully bonded: intact and interface 0 (kPartlyBonded: some element unbonded)
                 if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
                 const double* side = side_data + static_cast<std::size_t>(k) * stride;
-                bool all_bonded = true;
-                for (std::size_t el = 0; el < n_elements; ++el)
-                    all_bonded = all_bonded && side[kFlatJointHeader + el * kFlatElementSize] != 0.0;
-                if (!all_bonded) continue;
                 const int l = count++;
                 which[slot] = static_cast<std::int8_t>(l);
                 const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);

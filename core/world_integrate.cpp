@@ -5,8 +5,10 @@
 // plus wall motion, wall reactions and the divergence checks.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
+#include "core/pair_kinematics.hpp"  // select
 #include "core/parallel.hpp"
 #include "core/world.hpp"
 
@@ -31,25 +33,29 @@ struct BlockSums {
 
 }  // namespace
 
-// Each particle sums the outputs of its pairs and wall contacts, in slot order.
+// Each particle sums the outputs of its pairs and wall contacts, in slot order. Branch-free
+// (whether the particle is a pair's i or j is a coin flip in a packing in Morton order, and a
+// branch on it mispredicted): as j it adds F and M_j, as i it adds -F and -(M_j + d x F) with
+// d = x_j - x_i, the same bits as subtracting F and M_j + d x F.
 void World::gather_forces() {
     const auto n = static_cast<std::int64_t>(particles_.size());
     ParticleSet& P = particles_;
+    const Vec3* const x = P.position.data();
+    const Incidence* const incidence = incidence_.data();
+    const PairOutput* const out = pair_out_.data();
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
         for (std::int64_t p = begin; p < end; ++p) {
             const auto i = static_cast<std::size_t>(p);
+            const Vec3 xi = x[i];
             Vec3 f, t;
             for (std::int32_t e = incidence_start_[i]; e < incidence_start_[i + 1]; ++e) {
-                const Incidence inc = incidence_[static_cast<std::size_t>(e)];
-                const PairOutput& o = pair_out_[static_cast<std::size_t>(inc.slot)];
-                if (inc.partner >= 0) {  // this particle is j
-                    f += o.force_j;
-                    t += o.torque_j;
-                } else {                 // this particle is i
-                    const Vec3 d = P.position[static_cast<std::size_t>(~inc.partner)] - P.position[i];
-                    f -= o.force_j;
-                    t -= o.torque_j + cross(d, o.force_j);
-                }
+                const Incidence inc = incidence[e];
+                const PairOutput& o = out[inc.slot];
+                const bool as_j = inc.partner >= 0;
+                const std::int32_t partner = as_j ? inc.partner : ~inc.partner;
+                const Vec3 d = x[partner] - xi;  // used as i only
+                f += select(as_j, o.force_j, -o.force_j);
+                t += select(as_j, o.torque_j, -(o.torque_j + cross(d, o.force_j)));
             }
             for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
                 f += wall_out_[static_cast<std::size_t>(w)].force;
@@ -61,40 +67,119 @@ void World::gather_forces() {
     });
 }
 
+namespace {
+
+constexpr std::int64_t kIntegrateChunk = 64;  ///< particles per vectorised chunk
+
+/// Per-particle terms of one chunk, summed afterwards in particle order (so the sums keep
+/// their rounding): kinetic energy, damping work, boundary work of prescribed velocity and
+/// spin [J], squared displacement since the rebuild [m²], and whether the particle ran away.
+struct ChunkTerms {
+    double kinetic[kIntegrateChunk], damping[kIntegrateChunk], boundary_v[kIntegrateChunk], boundary_w[kIntegrateChunk];
+    double moved2[kIntegrateChunk];
+    double runaway[kIntegrateChunk];  ///< 1: ran away (a double: the vectoriser keeps every lane 64-bit)
+    double fixed_v[kIntegrateChunk], fixed_w[kIntegrateChunk];  ///< 1: prescribed velocity / spin
+};
+
+/// The particle arrays integrate() reads and writes (restrict: they never overlap).
+struct IntegrateArrays {
+    Vec3* __restrict position;
+    Vec3* __restrict velocity;
+    Vec3* __restrict spin;
+    const Vec3* __restrict force;
+    const Vec3* __restrict torque;
+    const Vec3* __restrict at_rebuild;
+    const double* __restrict mass;
+    const double* __restrict inertia;
+    const double* __restrict radius;
+    const std::uint8_t* __restrict flags;
+};
+
+// Component by component: an aggregate load or store of a Vec3 blocks the vectoriser.
+inline Vec3 load3(const Vec3* __restrict a, std::int64_t i) { return {a[i].x, a[i].y, a[i].z}; }
+inline void store3(Vec3* __restrict a, std::int64_t i, const Vec3& v) {
+    a[i].x = v.x;
+    a[i].y = v.y;
+    a[i].z = v.z;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(GRADEM_NO_CLONES)
+#define GRADEM_INTEGRATE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define GRADEM_INTEGRATE_CLONES
+#endif
+
+// The leap-frog of particles [p0, p0 + count), branch-free (a prescribed velocity or spin is
+// selected, not branched on: T.fixed_v, T.fixed_w unless `all_free`), vectorised across
+// particles: the same IEEE operations as the per-particle form, so the same bits (a select of
+// the damping term gives the +0 vector the branch left in place; subtracting a +0 boundary term
+// changes no sum).
+template <bool all_free>
+__attribute__((always_inline)) inline void integrate_body(const IntegrateArrays& A, std::int64_t p0,
+                                                          std::int64_t count, double dt, double alpha, ChunkTerms& T) {
+#pragma GCC ivdep
+    for (std::int64_t q = 0; q < count; ++q) {
+        const std::int64_t i = p0 + q;
+        const Vec3 f = load3(A.force, i), t = load3(A.torque, i);
+        const Vec3 v0 = load3(A.velocity, i), w0 = load3(A.spin, i);
+        const bool free_v = all_free | (T.fixed_v[q] == 0.0), free_w = all_free | (T.fixed_w[q] == 0.0);
+        const Vec3 fd = select(free_v, local_damping(f, v0, alpha), Vec3{});
+        const Vec3 td = select(free_w, local_damping(t, w0, alpha), Vec3{});
+        const Vec3 v1 = select(free_v, v0 + (dt / A.mass[i]) * (f + fd), v0);
+        const Vec3 w1 = select(free_w, w0 + (dt / A.inertia[i]) * (t + td), w0);
+        store3(A.velocity, i, v1);
+        store3(A.spin, i, w1);
+        const Vec3 x1 = load3(A.position, i) + dt * v1;
+        store3(A.position, i, x1);
+        T.boundary_v[q] = free_v ? 0.0 : dt * dot(f, v0);  // the driver holds it against f
+        T.boundary_w[q] = free_w ? 0.0 : dt * dot(t, w0);
+        T.kinetic[q] = 0.5 * (A.mass[i] * dot(v0, v1) + A.inertia[i] * dot(w0, w1));
+        T.damping[q] = 0.5 * dt * (dot(fd, v0 + v1) + dot(td, w0 + w1));
+        T.moved2[q] = norm2(x1 - load3(A.at_rebuild, i));
+        const double step_len2 = dt * dt * norm2(v1), limit = 0.5 * A.radius[i];
+        constexpr double big = std::numeric_limits<double>::max();  // |x| <= big: x is finite (not NaN, not inf)
+        const bool finite = (std::fabs(w1.x) <= big) & (std::fabs(w1.y) <= big) & (std::fabs(w1.z) <= big);
+        const bool bad = !(step_len2 <= limit * limit) | !finite;
+        T.runaway[q] = bad ? 1.0 : 0.0;
+    }
+}
+
+GRADEM_INTEGRATE_CLONES void integrate_chunk(const IntegrateArrays& A, std::int64_t p0, std::int64_t count, double dt,
+                                             double alpha, ChunkTerms& T) {
+    std::uint8_t any_fixed = 0;
+    for (std::int64_t q = 0; q < count; ++q) any_fixed |= A.flags[p0 + q];
+    if (any_fixed == 0) return integrate_body<true>(A, p0, count, dt, alpha, T);
+    for (std::int64_t q = 0; q < count; ++q) {
+        T.fixed_v[q] = (A.flags[p0 + q] & kFixedVelocity) ? 1.0 : 0.0;
+        T.fixed_w[q] = (A.flags[p0 + q] & kFixedSpin) ? 1.0 : 0.0;
+    }
+    integrate_body<false>(A, p0, count, dt, alpha, T);
+}
+
+}  // namespace
+
 World::IntegrationSums World::integrate() {
     const auto n = static_cast<std::int64_t>(particles_.size());
     std::vector<BlockSums> partial(static_cast<std::size_t>(block_count(n)));
     const double dt = dt_, alpha = sim_.local_damping;
     ParticleSet& P = particles_;
+    const IntegrateArrays arrays{P.position.data(), P.velocity.data(), P.spin.data(),   P.force.data(),
+                                 P.torque.data(),   position_at_rebuild_.data(), P.mass.data(), P.inertia.data(),
+                                 P.radius.data(),   P.flags.data()};
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BlockSums s;
-        for (std::int64_t p = begin; p < end; ++p) {
-            const auto i = static_cast<std::size_t>(p);
-            const Vec3 f = P.force[i], t = P.torque[i];
-            const Vec3 v0 = P.velocity[i], w0 = P.spin[i];
-            Vec3 fd, td;
-            if (!(P.flags[i] & kFixedVelocity)) {
-                fd = local_damping(f, v0, alpha);
-                P.velocity[i] = v0 + (dt / P.mass[i]) * (f + fd);
-            } else {
-                s.boundary -= dt * dot(f, v0);  // the driver holds it against f
+        ChunkTerms T;
+        for (std::int64_t p0 = begin; p0 < end; p0 += kIntegrateChunk) {
+            const std::int64_t count = std::min(kIntegrateChunk, end - p0);
+            integrate_chunk(arrays, p0, count, dt, alpha, T);
+            for (std::int64_t q = 0; q < count; ++q) {  // the sums in particle order
+                s.boundary -= T.boundary_v[q];
+                s.boundary -= T.boundary_w[q];
+                s.kinetic += T.kinetic[q];
+                s.damping -= T.damping[q];
+                s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);
+                if (s.runaway < 0 && T.runaway[q] != 0.0) s.runaway = p0 + q;
             }
-            if (!(P.flags[i] & kFixedSpin)) {
-                td = local_damping(t, w0, alpha);
-                P.spin[i] = w0 + (dt / P.inertia[i]) * (t + td);
-            } else {
-                s.boundary -= dt * dot(t, w0);
-            }
-            const Vec3 v1 = P.velocity[i], w1 = P.spin[i];
-            P.position[i] += dt * v1;
-
-            s.kinetic += 0.5 * (P.mass[i] * dot(v0, v1) + P.inertia[i] * dot(w0, w1));
-            s.damping -= 0.5 * dt * (dot(fd, v0 + v1) + dot(td, w0 + w1));
-            const double moved2 = norm2(P.position[i] - position_at_rebuild_[i]);
-            s.max_disp2 = std::max(s.max_disp2, moved2);
-            const double step_len2 = dt * dt * norm2(v1), limit = 0.5 * P.radius[i];
-            if (s.runaway < 0 && (!(step_len2 <= limit * limit) || !is_finite(w1)))
-                s.runaway = p;
         }
         partial[static_cast<std::size_t>(blk)] = s;
     });

@@ -177,7 +177,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     auto pass_block = [&](auto prefetch, std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BlockOut& bo = blocks[static_cast<std::size_t>(blk)];
         double strain_sum = 0, slip_sum = 0;
-        auto lanes = std::make_unique<Lanes[]>(2);
+        auto lanes = std::make_unique_for_overwrite<Lanes[]>(2);  // no zero-fill of 2 x 26 kB per block
         Lanes& C = lanes[0];  // overlapping pairs: contact, and bond if bonded
         Lanes& B = lanes[1];  // open bonded pairs: bond only
         std::int8_t where[kLanes];  // per pair of the batch: -1 nothing, 0 lane of C, 1 lane of B

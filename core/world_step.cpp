@@ -1,5 +1,6 @@
 // One DEM cycle (see world.hpp for the phase list and the determinism argument).
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -128,9 +129,13 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
                               particles_.spin[j], particles_.radius[i], particles_.radius[j]};
             PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
             const Vec3 d = s.xb - s.xa;
-            const bool replaced = bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)]);
-            if (replaced || norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb)) {  // replaced or open: nothing
-                p.shear_force = {};
+            // open first: an open pair needs no look at its bond record (a stream of 96-byte
+            // records read for one byte)
+            const bool open = norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb);
+            if (open || (bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)]))) {
+                const Vec3& v = p.shear_force;  // stays +0 without a store (the record is not written back)
+                if ((std::bit_cast<std::uint64_t>(v.x) | std::bit_cast<std::uint64_t>(v.y) | std::bit_cast<std::uint64_t>(v.z)) != 0)
+                    p.shear_force = {};
                 out = {};
                 continue;
             }

@@ -1,0 +1,75 @@
+// The genesis specimen of gradem-bench's --specimens rows (bench/specimen_bench.hpp).
+#include "bench/specimen_bench.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "bench/genesis_bench.hpp"
+#include "core/flat_joint_law.hpp"
+#include "experiments/cube_specimen.hpp"
+#include "experiments/packing_cache.hpp"
+
+namespace gradem::bench {
+namespace {
+
+constexpr double kCalibrationEdge = 3.5e-3;     // [m] the main job's cube (calibrate/configs/joint.toml)
+constexpr double kCalibrationGrains = 4349.0;   // its pre-blended grains (seed 1)
+
+// The calibration cube's genesis (experiments/configs/calibration_cube.toml) at another edge.
+exp::SpecimenSpec specimen_spec(std::int64_t grains) {
+    exp::SpecimenSpec spec;
+    spec.size_rule.min_diameter = 0.149e-3;
+    spec.size_rule.max_diameter = 0.8e-3;
+    spec.genesis.edge = kCalibrationEdge * std::cbrt(static_cast<double>(grains) / kCalibrationGrains);
+    spec.genesis.equilibrium_ratio = 0.05;
+    spec.genesis.max_steps = 400000;  // large packings need more minimisation iterations
+    spec.seed = 1;
+    return spec;
+}
+
+}  // namespace
+
+double default_gap_um(BondModel model) { return model == BondModel::flat_joint ? 20.0 : 70.0; }
+
+exp::Packing specimen_packing(std::int64_t grains, const std::filesystem::path& cache_dir, double& seconds,
+                              bool& cached) {
+    const auto t0 = std::chrono::steady_clock::now();
+    exp::Packing k = exp::load_or_generate(pre_blended_curve(), specimen_spec(grains), cache_dir, &cached);
+    seconds = cached ? 0.0 : std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return k;
+}
+
+BondParams bench_bond_params(const BondCase& c) {
+    BondParams bond;
+    bond.model = c.model;
+    bond.effective_modulus = 11.0e9;
+    bond.stiffness_ratio = 1.5;
+    bond.tensile_strength_mean = 17.0e6;
+    bond.tensile_strength_std = 0.2 * 17.0e6;
+    bond.cohesion_mean = 8.5e6;
+    bond.cohesion_std = 0.2 * 8.5e6;
+    FlatJointParams& joint = bond.law<FlatJointLaw>();
+    joint.radial_elements = 1;
+    joint.angular_elements = 4;
+    joint.bonded_fraction = c.bonded_fraction;
+    joint.gapped_fraction = 0.0;
+    return bond;
+}
+
+World specimen_world(const exp::Packing& packing, const BondCase& c) {
+    exp::MaterialParams m;
+    m.contact.effective_modulus = 11.0e9;
+    m.contact.stiffness_ratio = 1.5;
+    m.contact.friction = 0.5;
+    m.bond = bench_bond_params(c);
+    m.bond_gap_absolute = 1e-6 * (c.gap_um > 0.0 ? c.gap_um : default_gap_um(c.model));
+    if (auto why = m.invalid_reason()) throw std::invalid_argument(*why);
+    World world = exp::bonded_cube_specimen(packing, m);
+    const double height = world.walls()[1].point.z - world.walls()[0].point.z;
+    world.wall(0).velocity = {0, 0, 0.5 * height};  // strain rate 1/s, as the lattice rows
+    world.wall(1).velocity = {0, 0, -0.5 * height};
+    return world;
+}
+
+}  // namespace gradem::bench
