@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/named_enum.hpp"
 #include "experiments/cube_config.hpp"
 #include "experiments/cube_test.hpp"
 
@@ -21,7 +22,9 @@ namespace gradem::cal {
 /// the direct-tension test of the same specimen (experiments/tension_test.hpp; its outcome's
 /// peak is the tensile strength σt, its modulus the tensile chord modulus, tension positive).
 enum class CubeTest { compression, tension };
-const char* to_string(CubeTest t);
+constexpr EnumNameTable<CubeTest, 2> enum_name_table(CubeTest) {
+    return {{{CubeTest::compression, "compression"}, {CubeTest::tension, "direct tension"}}};
+}
 
 struct RunRequest {
     std::size_t sand = 0;         ///< index into the problem's sands
@@ -30,9 +33,11 @@ struct RunRequest {
     CubeTest test = CubeTest::compression;  ///< which test of the specimen (the model must run it)
 };
 
+/// How a run ended (the ledger's `status` column).
 enum class RunStatus { ok, diverged, timeout, failed };
-const char* to_string(RunStatus s);
-RunStatus run_status_from(const std::string& text);
+constexpr EnumNameTable<RunStatus, 4> enum_name_table(RunStatus) {
+    return {{{RunStatus::ok, "ok"}, {RunStatus::diverged, "diverged"}, {RunStatus::timeout, "timeout"}, {RunStatus::failed, "failed"}}};
+}
 
 struct RunOutcome {
     RunStatus status = RunStatus::failed;

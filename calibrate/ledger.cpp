@@ -208,7 +208,7 @@ std::optional<RunOutcome> Ledger::find(const std::string& run_key) const {
     s.text(1, run_key);
     if (s.step() != SQLITE_ROW) return std::nullopt;
     RunOutcome o;
-    o.status = run_status_from(s.column_text(0));
+    o.status = parse_enum<RunStatus>(s.column_text(0)).value_or(RunStatus::failed);
     o.reason = s.column_text(1);
     o.modulus_pa = s.column_real(2);
     o.peak_pa = s.column_real(3);

@@ -190,7 +190,7 @@ int serve(CubeModel* model, const std::string& load_error, const WorkerIdentity&
                 // Rank 0 reports and sets the job's exit code; a worker exiting non-zero would
                 // make mpirun kill rank 0 before it has said why.
                 case Kind::stop: return 0;
-                default: refuse(std::string("unexpected '") + wire::to_string(wire::kind_of(m.bytes)) + "' message");
+                default: refuse(std::string("unexpected '") + to_string(wire::kind_of(m.bytes)) + "' message");
             }
         } catch (const wire::WireError& e) {
             refuse(e.what());
@@ -388,7 +388,7 @@ private:
         x_.stop_all("rank 0 stopped the job");
         throw ExecutorError("MPI job: " + (kind == Kind::stop ? wire::decode_stop(m->bytes).reason
                                                                : where(worker.rank, worker.host) + " sent an unexpected '" +
-                                                                     wire::to_string(kind) + "' message"));
+                                                                     to_string(kind) + "' message"));
     }
 
     /// 3. A worker past its deadline is given up: its run is a timeout, the rank is not used again.

@@ -153,18 +153,6 @@ exp::MaterialParams get_material(Reader& r) {
 
 }  // namespace
 
-const char* to_string(Kind kind) {
-    switch (kind) {
-        case Kind::hello: return "hello";
-        case Kind::prepare: return "prepare";
-        case Kind::prepared: return "prepared";
-        case Kind::run: return "run";
-        case Kind::result: return "result";
-        case Kind::stop: return "stop";
-    }
-    return "unknown";
-}
-
 Kind kind_of(const std::string& bytes) {
     if (bytes.size() < 13) throw WireError("message of " + std::to_string(bytes.size()) + " bytes is shorter than a header");
     std::uint32_t head[3];

@@ -20,13 +20,21 @@
 #include <vector>
 
 #include "calibrate/cube_model.hpp"
+#include "common/named_enum.hpp"
 
 namespace gradem::cal::wire {
 
 inline constexpr std::uint32_t kProtocolVersion = 6;  // 6: a bond law's fields written from its parameter rows
 
 enum class Kind : std::uint8_t { hello = 1, prepare = 2, prepared = 3, run = 4, result = 5, stop = 6 };
-const char* to_string(Kind kind);
+constexpr EnumNameTable<Kind, 6> enum_name_table(Kind) {
+    return {{{Kind::hello, "hello"},
+             {Kind::prepare, "prepare"},
+             {Kind::prepared, "prepared"},
+             {Kind::run, "run"},
+             {Kind::result, "result"},
+             {Kind::stop, "stop"}}};
+}
 
 class WireError : public std::runtime_error {
 public:

@@ -17,12 +17,9 @@ using namespace common::toml_io;
 const std::vector<std::string> kTables = {"study", "run", "output"};
 
 StudyKind parse_kind(const std::string& text, Context& ctx) {
-    for (StudyKind k : {StudyKind::gradation_effect, StudyKind::resolution, StudyKind::fines_truncation,
-                        StudyKind::sensitivity, StudyKind::model_form})
-        if (text == to_string(k)) return k;
+    if (const auto kind = parse_enum<StudyKind>(text)) return *kind;
     throw InputError(ctx.file, ctx.keys["study.kind"].line,
-                     "key 'study.kind' = \"" + text +
-                         "\": expected \"gradation_effect\", \"resolution\", \"fines_truncation\", \"sensitivity\" or \"model_form\"");
+                     "key 'study.kind' = \"" + text + "\": expected " + enum_names_text<StudyKind>(NameList::quoted_or));
 }
 
 /// The array `key` as a list of `T`, each checked by `read` (which throws on a bad item).
@@ -135,17 +132,6 @@ void read_run_and_output(Context& ctx, const toml::table& root, StudyConfig& c) 
 }
 
 }  // namespace
-
-const char* to_string(StudyKind k) {
-    switch (k) {
-        case StudyKind::gradation_effect: return "gradation_effect";
-        case StudyKind::resolution: return "resolution";
-        case StudyKind::fines_truncation: return "fines_truncation";
-        case StudyKind::sensitivity: return "sensitivity";
-        case StudyKind::model_form: return "model_form";
-    }
-    return "unknown";
-}
 
 std::string StudyConfig::describe() const {
     std::ostringstream d;

@@ -24,10 +24,18 @@
 #include <string>
 #include <vector>
 
+#include "common/named_enum.hpp"
+
 namespace gradem::cal {
 
 enum class StudyKind { gradation_effect, resolution, fines_truncation, sensitivity, model_form };
-const char* to_string(StudyKind k);
+constexpr EnumNameTable<StudyKind, 5> enum_name_table(StudyKind) {
+    return {{{StudyKind::gradation_effect, "gradation_effect"},
+             {StudyKind::resolution, "resolution"},
+             {StudyKind::fines_truncation, "fines_truncation"},
+             {StudyKind::sensitivity, "sensitivity"},
+             {StudyKind::model_form, "model_form"}}};
+}
 
 struct StudyConfig {
     std::filesystem::path file;

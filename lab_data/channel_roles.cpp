@@ -123,7 +123,7 @@ RoleAssignment assign_roles(const RawTable& t, const ChannelOverrides& overrides
         if (!found) {
             std::string names;
             for (const auto& col : t.columns) names += (names.empty() ? "" : ", ") + describe(col);
-            throw InputError(t.file, header_line, "column '" + wanted + "' (configured as the " + role_name(role) +
+            throw InputError(t.file, header_line, "column '" + wanted + "' (configured as the " + to_string(role) +
                                                       " column) is not in the file; columns are: " + names);
         }
     }
@@ -139,8 +139,8 @@ RoleAssignment assign_roles(const RawTable& t, const ChannelOverrides& overrides
             a.column[rule.role] = hits.front();
             claimed[hits.front()] = true;
             if (hits.size() > 1)
-                a.notes.push_back(std::string("several columns could be ") + role_name(rule.role) + "; using '" +
-                                  t.columns[hits.front()].name + "' (set [columns] " + role_name(rule.role) + " to choose)");
+                a.notes.push_back(std::string("several columns could be ") + to_string(rule.role) + "; using '" +
+                                  t.columns[hits.front()].name + "' (set [columns] " + to_string(rule.role) + " to choose)");
         }
     }
     for (const auto& rule : rules()) {  // 3. units alone, when exactly one free column fits
@@ -151,7 +151,7 @@ RoleAssignment assign_roles(const RawTable& t, const ChannelOverrides& overrides
         if (hits.size() != 1) continue;
         a.column[rule.role] = hits.front();
         claimed[hits.front()] = true;
-        a.notes.push_back(std::string("column '") + t.columns[hits.front()].name + "' taken as " + role_name(rule.role) +
+        a.notes.push_back(std::string("column '") + t.columns[hits.front()].name + "' taken as " + to_string(rule.role) +
                           " from its unit");
     }
     return a;

@@ -72,7 +72,7 @@ void read_preamble(RawTable& t, const Lines& lines, std::size_t begin, std::size
 void read_generic(RawTable& t, const Lines& lines) {
     t.dialect = sniff_dialect(lines);
     std::size_t start = 0;
-    if (t.format == format_name(ExportFormat::bluehill)) {
+    if (t.format == to_string(ExportFormat::bluehill)) {
         for (std::size_t i = 0; i < lines.size(); ++i)
             if (is_raw_data_marker(lines[i])) { start = i + 1; break; }
     }
@@ -121,25 +121,9 @@ void read_mts793(RawTable& t, const Lines& lines) {
 
 }  // namespace
 
-const char* format_name(ExportFormat format) {
-    switch (format) {
-        case ExportFormat::automatic: return "auto";
-        case ExportFormat::mts_testsuite: return "mts-testsuite";
-        case ExportFormat::mts793: return "mts793";
-        case ExportFormat::bluehill: return "instron-bluehill";
-        case ExportFormat::plain_csv: return "plain-csv";
-    }
-    return "?";
-}
-
 std::optional<ExportFormat> parse_format_name(std::string_view name) {
     const std::string n = to_lower(trim(name));
-    if (n == "auto" || n.empty()) return ExportFormat::automatic;
-    if (n == "mts-testsuite" || n == "testsuite") return ExportFormat::mts_testsuite;
-    if (n == "mts793" || n == "mts-793") return ExportFormat::mts793;
-    if (n == "instron-bluehill" || n == "bluehill") return ExportFormat::bluehill;
-    if (n == "plain-csv" || n == "csv") return ExportFormat::plain_csv;
-    return std::nullopt;
+    return n.empty() ? ExportFormat::automatic : parse_enum<ExportFormat>(n);
 }
 
 ExportFormat detect_export_format(const std::vector<std::string_view>& lines) {
@@ -160,7 +144,7 @@ RawTable read_raw_export(std::string_view bytes, const std::string& file, Export
     const Lines lines = split_lines(text.utf8);
     if (first_nonblank(lines) >= lines.size()) throw InputError(file, 1, "file is empty: expected a load-frame export");
     if (format == ExportFormat::automatic) format = detect_export_format(lines);
-    t.format = format_name(format);
+    t.format = to_string(format);
     if (format == ExportFormat::mts793) read_mts793(t, lines);
     else read_generic(t, lines);
     return t;

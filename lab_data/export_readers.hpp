@@ -19,14 +19,26 @@
 #include <string>
 #include <string_view>
 
+#include "common/named_enum.hpp"
 #include "lab_data/raw_table.hpp"
 
 namespace gradem::lab {
 
 enum class ExportFormat { automatic, mts_testsuite, mts793, bluehill, plain_csv };
+/// The names (`--format`, a dataset's export_format, RawTable::format), then their aliases.
+constexpr EnumNameTable<ExportFormat, 9> enum_name_table(ExportFormat) {
+    return {{{ExportFormat::automatic, "auto"},
+             {ExportFormat::mts_testsuite, "mts-testsuite"},
+             {ExportFormat::mts793, "mts793"},
+             {ExportFormat::bluehill, "instron-bluehill"},
+             {ExportFormat::plain_csv, "plain-csv"},
+             {ExportFormat::mts_testsuite, "testsuite"},
+             {ExportFormat::mts793, "mts-793"},
+             {ExportFormat::bluehill, "bluehill"},
+             {ExportFormat::plain_csv, "csv"}}};
+}
 
-const char* format_name(ExportFormat format);
-/// "auto", "mts-testsuite", "mts793", "instron-bluehill" (or "bluehill"), "plain-csv" (or "csv").
+/// parse_enum<ExportFormat> ignoring case and outer spaces; empty is "auto".
 std::optional<ExportFormat> parse_format_name(std::string_view name);
 
 /// Decides the format from the decoded lines (never from the file name).

@@ -38,21 +38,21 @@ Unit column_unit(const RawTable& t, const RawColumn& col, ChannelRole role, cons
         const auto header = parse_unit(col.unit), given = parse_unit(spelling);
         if (header && given && header->to_si != given->to_si)
             throw InputError(t.file, col.header_line,
-                             column_prefix(col.name) + "the unit override '" + spelling + "' for " + role_name(role) +
+                             column_prefix(col.name) + "the unit override '" + spelling + "' for " + to_string(role) +
                                  " contradicts the header's unit '" + col.unit + "'; drop the override, or force it with '!" +
-                                 spelling + "' (--unit " + role_name(role) + "=!" + spelling + ", or [columns] " + role_name(role) +
+                                 spelling + "' (--unit " + to_string(role) + "=!" + spelling + ", or [columns] " + to_string(role) +
                                  "_unit = \"!" + spelling + "\")");
     }
     const Quantity want = role_quantity(role);
-    const std::string hint = std::string("expected a ") + quantity_name(want) + " unit (" + accepted_units(want) +
-                             "); set [columns] " + role_name(role) + "_unit in the config if the file does not say";
+    const std::string hint = std::string("expected a ") + to_string(want) + " unit (" + accepted_units(want) +
+                             "); set [columns] " + to_string(role) + "_unit in the config if the file does not say";
     if (trim(spelling).empty()) throw InputError(t.file, col.header_line, column_prefix(col.name) + "no unit given; " + hint);
     const auto unit = parse_unit(spelling);
     if (!unit) throw InputError(t.file, col.header_line, column_prefix(col.name) + "unit '" + spelling + "' is unknown; " + hint);
     const bool extensometer_length = (role == ChannelRole::strain || role == ChannelRole::lateral_strain) && unit->quantity == Quantity::length;
     if (unit->quantity != want && !extensometer_length)
         throw InputError(t.file, col.header_line, column_prefix(col.name) + "unit '" + spelling + "' is a " +
-                                                      quantity_name(unit->quantity) + " unit; " + hint);
+                                                      to_string(unit->quantity) + " unit; " + hint);
     return *unit;
 }
 
@@ -65,7 +65,7 @@ std::vector<double> column_values(const RawTable& t, const RawColumn& col, const
         const auto x = parse_number(cell.text, t.dialect, cell.quoted);
         if (!x)
             throw InputError(t.file, t.row_line[r], column_prefix(col.name) + "'" + trim(cell.text) +
-                                                        "' is not a number (expected " + quantity_name(unit.quantity) +
+                                                        "' is not a number (expected " + to_string(unit.quantity) +
                                                         " in " + unit.symbol + ", decimal separator '" + t.dialect.decimal + "')");
         v[r] = *x * unit.to_si;
     }
@@ -87,7 +87,7 @@ std::optional<double> meta_length(const RawTable& t, const MetaEntry& m, Quantit
     }
     const auto u = parse_unit(unit);
     if (!u || u->quantity != q)
-        throw InputError(t.file, m.line, "metadata '" + m.key + "': unit '" + unit + "' is not a " + quantity_name(q) +
+        throw InputError(t.file, m.line, "metadata '" + m.key + "': unit '" + unit + "' is not a " + to_string(q) +
                                              " unit (expected " + accepted_units(q) + ")");
     return *x * u->to_si;
 }
@@ -166,23 +166,7 @@ void drop_incomplete_rows(LoadFrameTest& test) {
 
 }  // namespace
 
-const char* role_name(ChannelRole role) {
-    switch (role) {
-        case ChannelRole::time: return "time";
-        case ChannelRole::load: return "load";
-        case ChannelRole::crosshead: return "crosshead";
-        case ChannelRole::strain: return "strain";
-        case ChannelRole::lateral_strain: return "lateral_strain";
-        case ChannelRole::stress: return "stress";
-    }
-    return "?";
-}
-
-std::optional<ChannelRole> parse_role(std::string_view name) {
-    for (ChannelRole r : kAllRoles)
-        if (to_lower(trim(name)) == role_name(r)) return r;
-    return std::nullopt;
-}
+std::optional<ChannelRole> parse_role(std::string_view name) { return parse_enum<ChannelRole>(to_lower(trim(name))); }
 
 std::optional<double> metadata_dimension(const RawTable& t, std::initializer_list<const char*> keys,
                                          std::initializer_list<const char*> not_keys, Quantity q, std::vector<std::string>& notes) {
@@ -238,7 +222,7 @@ LoadFrameTest interpret_export(const RawTable& t, const ReadOptions& o) {
         const RawColumn& col = t.columns[index];
         const Unit unit = column_unit(t, col, role, o.channels);
         v[role] = column_values(t, col, unit);
-        test.columns[role_name(role)] = col.name + " [" + unit.symbol + "]";
+        test.columns[to_string(role)] = col.name + " [" + unit.symbol + "]";
         const bool is_strain = role == ChannelRole::strain || role == ChannelRole::lateral_strain;
         if (is_strain && unit.quantity == Quantity::length) {  // extensometer reports its elongation
             if (!(test.geometry.gauge_length_m > 0))

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/named_enum.hpp"
 #include "lab_data/curve_reduction.hpp"
 #include "lab_data/export_readers.hpp"
 #include "lab_data/lab_warning.hpp"
@@ -20,8 +21,16 @@ namespace gradem::lab {
 enum class ChannelRole { time, load, crosshead, strain, lateral_strain, stress };
 inline constexpr ChannelRole kAllRoles[] = {ChannelRole::time, ChannelRole::load, ChannelRole::crosshead,
                                             ChannelRole::strain, ChannelRole::lateral_strain, ChannelRole::stress};
-/// "time", "load", "crosshead", "strain", "lateral_strain", "stress" (also the config keys).
-const char* role_name(ChannelRole role);
+/// The roles' names (also the [columns] keys and --column/--unit roles).
+constexpr EnumNameTable<ChannelRole, 6> enum_name_table(ChannelRole) {
+    return {{{ChannelRole::time, "time"},
+             {ChannelRole::load, "load"},
+             {ChannelRole::crosshead, "crosshead"},
+             {ChannelRole::strain, "strain"},
+             {ChannelRole::lateral_strain, "lateral_strain"},
+             {ChannelRole::stress, "stress"}}};
+}
+/// parse_enum<ChannelRole> ignoring case and outer spaces.
 std::optional<ChannelRole> parse_role(std::string_view name);
 
 /// User overrides of the inferred column roles ([columns] in the dataset config).

@@ -42,7 +42,7 @@ void add_source(std::string& sources, const std::string& s) {
 }
 
 [[noreturn]] void missing_dimension(const Dimension& d, const RawTable& t, const TensileSpec& spec, TensileTestKind kind) {
-    const std::string what = std::string(tensile_test_name(kind)) + " test: the export states no specimen " + d.what;
+    const std::string what = std::string(to_string(kind)) + " test: the export states no specimen " + d.what;
     if (spec.config_file.empty())
         throw InputError(t.file, 0, what + "; give " + d.option + " (mm)");
     throw InputError(spec.config_file.string(), spec.config_line,
@@ -65,16 +65,7 @@ std::string mm(double m) {
 
 }  // namespace
 
-const char* tensile_test_name(TensileTestKind kind) {
-    return kind == TensileTestKind::splitting ? "splitting" : "flexural";
-}
-
-std::optional<TensileTestKind> parse_tensile_test(std::string_view name) {
-    const std::string n = to_lower(trim(name));
-    if (n == "splitting") return TensileTestKind::splitting;
-    if (n == "flexural") return TensileTestKind::flexural;
-    return std::nullopt;
-}
+std::optional<TensileTestKind> parse_tensile_test(std::string_view name) { return parse_enum<TensileTestKind>(to_lower(trim(name))); }
 
 double splitting_tensile_strength_pa(double peak_load_n, double length_m, double diameter_m) {
     return 2 * peak_load_n / (std::numbers::pi * length_m * diameter_m);  // ASTM C496: T = 2P/(π l d)

@@ -66,18 +66,6 @@ std::string normalise(std::string_view text) {
 
 }  // namespace
 
-const char* quantity_name(Quantity q) {
-    switch (q) {
-        case Quantity::time: return "time";
-        case Quantity::force: return "force";
-        case Quantity::length: return "length";
-        case Quantity::strain: return "strain";
-        case Quantity::stress: return "stress";
-        case Quantity::area: return "area";
-    }
-    return "?";
-}
-
 const char* accepted_units(Quantity q) {
     switch (q) {
         case Quantity::time: return "s, sec, ms, min";

@@ -6,11 +6,20 @@
 #include <string>
 #include <string_view>
 
+#include "common/named_enum.hpp"
+
 namespace gradem::lab {
 
 enum class Quantity { time, force, length, strain, stress, area };
+constexpr EnumNameTable<Quantity, 6> enum_name_table(Quantity) {
+    return {{{Quantity::time, "time"},
+             {Quantity::force, "force"},
+             {Quantity::length, "length"},
+             {Quantity::strain, "strain"},
+             {Quantity::stress, "stress"},
+             {Quantity::area, "area"}}};
+}
 
-const char* quantity_name(Quantity q);
 /// The unit spellings accepted for a quantity, for error messages ("N, kN, lbf, kip").
 const char* accepted_units(Quantity q);
 

@@ -17,14 +17,16 @@
 #include <string_view>
 #include <vector>
 
+#include "common/named_enum.hpp"
+
 namespace gradem::report {
 
+/// Which command's outputs a report shows. Names: common/named_enum.hpp (to_string,
+/// parse_enum<ReportKind>, enum_names<ReportKind>()).
 enum class ReportKind { lab, compress, calibrate, study };
-
-const char* to_string(ReportKind kind);
-std::optional<ReportKind> parse_report_kind(std::string_view name);
-/// Every kind parse_report_kind() accepts, in order: {"lab", "compress", "calibrate", "study"}.
-std::vector<std::string> report_kind_names();
+constexpr EnumNameTable<ReportKind, 4> enum_name_table(ReportKind) {
+    return {{{ReportKind::lab, "lab"}, {ReportKind::compress, "compress"}, {ReportKind::calibrate, "calibrate"}, {ReportKind::study, "study"}}};
+}
 
 /// The interpreter that runs the generator: $GRADEM_PYTHON if set (tests use it to simulate a
 /// missing interpreter or library), else /usr/bin/python3.
