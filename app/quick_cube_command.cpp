@@ -15,8 +15,8 @@
 #include "app/commands.hpp"
 #include "common/atomic_file.hpp"
 #include "core/parallel.hpp"
-#include "experiments/platen_compression.hpp"
-#include "experiments/quick_packing.hpp"
+#include "experiments/virtual_tests/platen_compression.hpp"
+#include "experiments/specimen/quick_packing.hpp"
 
 namespace gradem::app {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 

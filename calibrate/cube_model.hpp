@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "common/named_enum.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/cube_test.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
 
 namespace gradem::cal {
 

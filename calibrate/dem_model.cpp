@@ -12,12 +12,12 @@
 #include <stdexcept>
 #include <thread>
 
-#include "experiments/paste_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
 #include "calibrate/cube_model.hpp"
 #include "calibrate/thread_pool.hpp"
 #include "common/input_error.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/tension_config.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/config/tension_config.hpp"
 
 namespace gradem::cal {
 namespace {

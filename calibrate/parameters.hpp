@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cube_test.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 

@@ -14,7 +14,7 @@
 #include "common/input_error.hpp"
 #include "common/json_number.hpp"
 #include "common/toml_section.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 namespace {

@@ -28,7 +28,7 @@
 
 #include "calibrate/parameters.hpp"
 #include "common/named_enum.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 
 namespace gradem::cal {
 

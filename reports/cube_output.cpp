@@ -9,7 +9,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/json_number.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 #include "reports/vtk_output.hpp"
 
 namespace gradem::exp {

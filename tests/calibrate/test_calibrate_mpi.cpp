@@ -21,7 +21,7 @@
 
 #include "calibrate/ledger.hpp"
 #include "calibrate_fixture.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;

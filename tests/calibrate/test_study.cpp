@@ -11,7 +11,7 @@
 #include "calibrate/study_models.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 #include "reports/calibration_report.hpp"
 #include "reports/study_report.hpp"
 

@@ -7,7 +7,7 @@
 // moduli and strengths (calibrate/README.md, the main job).
 #include <catch2/catch.hpp>
 
-#include "experiments/cube_specimen.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
 #include "small_specimen.hpp"
 
 using namespace gradem;
