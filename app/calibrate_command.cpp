@@ -24,7 +24,7 @@
 #include "calibrate/calibration.hpp"
 #include "calibrate/plan.hpp"
 #ifdef GRADEM_HAVE_MPI
-#include "calibrate/mpi_executor.hpp"
+#include "calibrate/execution/mpi_executor.hpp"
 #endif
 #include "common/clock_text.hpp"
 #include "common/text_file.hpp"

@@ -2,7 +2,7 @@
 // The commands that run cube tests (calibrate, study) when an MPI launcher started them.
 #include <stdexcept>
 
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::app {
 

@@ -15,10 +15,10 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/mpi_launch.hpp"
-#include "calibrate/study.hpp"
-#include "calibrate/study_models.hpp"
+#include "calibrate/study/study.hpp"
+#include "calibrate/study/study_models.hpp"
 #ifdef GRADEM_HAVE_MPI
-#include "calibrate/mpi_executor.hpp"
+#include "calibrate/execution/mpi_executor.hpp"
 #endif
 #include "common/text_file.hpp"
 #include "reports/html_report.hpp"

@@ -14,7 +14,7 @@
 
 #include "experiments/paste/paste_cache.hpp"
 #include "calibrate/cube_model.hpp"
-#include "calibrate/thread_pool.hpp"
+#include "calibrate/execution/thread_pool.hpp"
 #include "common/input_error.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 #include "experiments/config/tension_config.hpp"

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "calibrate/cube_model.hpp"
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::cal {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "calibrate/ledger.hpp"
-#include "calibrate/study_kinds.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/study/study_kinds.hpp"
 #include "common/atomic_file.hpp"
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // The result files of a `gradem study` (reports/study_report.cpp).
-#include "calibrate/study.hpp"
+#include "calibrate/study/study.hpp"
 
 namespace gradem::cal {
 

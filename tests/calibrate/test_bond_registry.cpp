@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "core/bond_models.hpp"
 #include "core/params.hpp"
 #include "experiments/virtual_tests/cube_test.hpp"

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/objective.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate_fixture.hpp"

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "calibrate/cube_model.hpp"
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/problem.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 #include "experiments/paste/paste_cache.hpp"

@@ -19,7 +19,7 @@
 #include <sstream>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate_fixture.hpp"
 #include "experiments/config/cube_config.hpp"
 

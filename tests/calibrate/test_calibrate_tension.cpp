@@ -9,7 +9,7 @@
 
 #include "calibrate/objective.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 #include "experiments/config/cube_config.hpp"

@@ -13,9 +13,9 @@
 #include <set>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
-#include "calibrate/run_executor.hpp"
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/execution/run_executor.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "calibrate_fixture.hpp"
 
 namespace fs = std::filesystem;

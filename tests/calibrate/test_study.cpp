@@ -5,10 +5,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "calibrate/run_executor.hpp"
-#include "calibrate/study.hpp"
-#include "calibrate/study_kinds.hpp"
-#include "calibrate/study_models.hpp"
+#include "calibrate/execution/run_executor.hpp"
+#include "calibrate/study/study.hpp"
+#include "calibrate/study/study_kinds.hpp"
+#include "calibrate/study/study_models.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 #include "experiments/config/cube_config.hpp"

@@ -10,7 +10,7 @@
 
 #include "calibrate/cube_model.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/study_config.hpp"
+#include "calibrate/study/study_config.hpp"
 
 namespace gradem::cal {
 

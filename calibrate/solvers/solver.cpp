@@ -2,7 +2,7 @@
 // step, the noise-floor objective, and the dispatch from [solver] method to a solver.
 #include <cmath>
 
-#include "calibrate/solver.hpp"
+#include "calibrate/solvers/solver.hpp"
 
 namespace gradem::cal {
 

@@ -1,11 +1,11 @@
-#include "calibrate/study_models.hpp"
+#include "calibrate/study/study_models.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
 #include "calibrate/calibration.hpp"
-#include "calibrate/study.hpp"
-#include "calibrate/study_kinds.hpp"
+#include "calibrate/study/study.hpp"
+#include "calibrate/study/study_kinds.hpp"
 #include "common/input_error.hpp"
 
 namespace gradem::cal {

@@ -1,4 +1,4 @@
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/run_message.hpp"
 
 #include <cstring>
 #include <type_traits>

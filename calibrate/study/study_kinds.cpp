@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "calibrate/study_kinds.hpp"
+#include "calibrate/study/study_kinds.hpp"
 #include "common/input_error.hpp"
 #include "common/json_number.hpp"
 #include "common/number_format.hpp"

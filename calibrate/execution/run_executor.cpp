@@ -1,4 +1,4 @@
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "calibrate/thread_pool.hpp"
+#include "calibrate/execution/thread_pool.hpp"
 
 namespace gradem::cal {
 

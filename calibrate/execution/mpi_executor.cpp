@@ -2,7 +2,7 @@
 // main threads call MPI (MPI_THREAD_FUNNELED). Nobody blocks in MPI: Open MPI busy-polls in
 // a blocking receive, which would take a core from the cube tests, so every wait is
 // MPI_Iprobe with short sleeps (class Backoff) - and can time out.
-#include "calibrate/mpi_executor.hpp"
+#include "calibrate/execution/mpi_executor.hpp"
 
 #include <mpi.h>
 #include <unistd.h>
@@ -18,8 +18,8 @@
 #include <optional>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "common/hash.hpp"
 
 namespace gradem::cal::mpi {

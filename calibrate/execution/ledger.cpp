@@ -1,4 +1,4 @@
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 
 #include <sqlite3.h>
 

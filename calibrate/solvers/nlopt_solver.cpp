@@ -2,7 +2,7 @@
 #include <cmath>
 #include <nlopt.hpp>
 
-#include "calibrate/solver.hpp"
+#include "calibrate/solvers/solver.hpp"
 
 namespace gradem::cal {
 namespace {

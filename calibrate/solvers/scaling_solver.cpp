@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "calibrate/rescaling.hpp"
-#include "calibrate/solver.hpp"
+#include "calibrate/solvers/solver.hpp"
 
 namespace gradem::cal {
 namespace {

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "calibrate/problem.hpp"
-#include "calibrate/run_executor.hpp"
-#include "calibrate/study_config.hpp"
+#include "calibrate/execution/run_executor.hpp"
+#include "calibrate/study/study_config.hpp"
 
 namespace gradem::cal {
 

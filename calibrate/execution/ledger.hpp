@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "calibrate/cube_model.hpp"
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 struct sqlite3;
 

@@ -1,4 +1,4 @@
-#include "calibrate/study_config.hpp"
+#include "calibrate/study/study_config.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "calibrate/solver.hpp"
+#include "calibrate/solvers/solver.hpp"
 
 namespace gradem::cal {
 namespace {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "calibrate/study_kinds.hpp"
+#include "calibrate/study/study_kinds.hpp"
 #include "calibrate/target_tolerance.hpp"
 #include "common/input_error.hpp"
 #include "common/json_number.hpp"

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::cal::mpi {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "calibrate/ledger.hpp"
-#include "calibrate/study.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/study/study.hpp"
 
 namespace gradem::cal {
 

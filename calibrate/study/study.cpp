@@ -1,7 +1,7 @@
 // The study kinds (study_config.hpp) on top of the calibration's Evaluator: every simulated
 // configuration ("case") is a set of parameter points run on every sand and seed, through the
 // study's own ledger.
-#include "calibrate/study.hpp"
+#include "calibrate/study/study.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -12,9 +12,9 @@
 
 #include "calibrate/calibration.hpp"
 #include "calibrate/evaluator.hpp"
-#include "calibrate/ledger.hpp"
-#include "calibrate/study_kinds.hpp"
-#include "calibrate/study_models.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/study/study_kinds.hpp"
+#include "calibrate/study/study_models.hpp"
 #include "common/hash.hpp"
 #include "common/input_error.hpp"
 #include "lab_data/statistics.hpp"
