@@ -4,7 +4,7 @@
 // an ETA go to stderr; the one-line brief report goes to stdout. --plan prints the cost
 // (calibrate/plan.hpp) and stops.
 // Under an MPI launcher (mpirun -np N gradem calibrate ..., GRADEM_MPI builds) rank 0 runs the
-// calibration and ranks 1..N-1 run the cube tests (calibrate/mpi_executor.hpp); the answer is
+// calibration and ranks 1..N-1 run the cube tests (calibrate/execution/mpi_executor.hpp); the answer is
 // the same as with threads.
 // Exit status: 0 done, 1 bad input (config, lab results, ledger: the ledger is left untouched;
 // or MPI setup), 2 bad usage, 3 the calibration finished but every evaluation failed.

@@ -1,6 +1,6 @@
 // `gradem quick-cube`: a bonded cube of a few thousand spheres compressed between platens to
 // past its peak, with a stress-strain summary. A smoke run of the whole engine on a quick
-// lattice packing (experiments/quick_packing.hpp); specimens of a measured gradation are
+// lattice packing (experiments/specimen/quick_packing.hpp); specimens of a measured gradation are
 // `gradem compress`'s (docs/genesis.md).
 #include <chrono>
 #include <memory>

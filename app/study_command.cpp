@@ -1,10 +1,10 @@
 // `gradem study <study.toml> [--out DIR] [--workers N]`: runs a parameter study
-// (calibrate/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
+// (calibrate/study/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
 // into its output folder, then report.html (reports/html/study_report.py). Milestones go to
 // stderr, the answer and the report path to stdout.
 // Under an MPI launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) rank 0 runs the
 // study and ranks 1..N-1 run its cube tests, as for gradem calibrate
-// (calibrate/study_models.hpp); the answer is the same as with threads.
+// (calibrate/study/study_models.hpp); the answer is the same as with threads.
 // Exit status: 0 done, 1 bad input (study, ledger or MPI setup), 2 bad usage, 3 every run failed.
 #include <cstdio>
 #include <iostream>

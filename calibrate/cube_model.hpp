@@ -19,7 +19,7 @@
 namespace gradem::cal {
 
 /// Which virtual test a model runs: the cube compression test (what the calibration fits) or
-/// the direct-tension test of the same specimen (experiments/tension_test.hpp; its outcome's
+/// the direct-tension test of the same specimen (experiments/virtual_tests/tension_test.hpp; its outcome's
 /// peak is the tensile strength σt, its modulus the tensile chord modulus, tension positive).
 enum class CubeTest { compression, tension };
 constexpr EnumNameTable<CubeTest, 2> enum_name_table(CubeTest) {

@@ -38,7 +38,7 @@ constexpr EnumNameTable<Mode, 3> enum_name_table(Mode) {
     return {{{Mode::joint, "joint"}, {Mode::per_sand, "per_sand"}, {Mode::study, "study"}}};
 }
 
-/// [solver] method (calibrate/solver.cpp dispatches on it).
+/// [solver] method (calibrate/solvers/solver.cpp dispatches on it).
 enum class Method { scaling, bobyqa, sbplx, cobyla, crs2, direct, ceres };
 constexpr EnumNameTable<Method, 7> enum_name_table(Method) {
     return {{{Method::scaling, "scaling"},

@@ -5,7 +5,7 @@
 // the BondModel enumerator, the name configs, reports and the ledger use, and the macro.json
 // group of the law's parameters. Everything else derives from this list: the BondModel enum
 // and its names, the parameters BondParams holds (BondLawParams), the validator, the material
-// table (experiments/material_table.cpp), the MPI wire format (calibrate/run_message.cpp) and the
+// table (experiments/config/material_table.cpp), the MPI wire format (calibrate/execution/run_message.cpp) and the
 // analytic stand-in (calibrate/analytic_model.cpp).
 // The World calls visit_bond_law once per phase, so each law's loop is compiled with its kernel
 // inlined (no per-bond dispatch in the hot loop).

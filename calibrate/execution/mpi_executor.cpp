@@ -1,4 +1,4 @@
-// The MPI executor (calibrate/mpi_executor.hpp). Only rank 0's main thread and the workers'
+// The MPI executor (calibrate/execution/mpi_executor.hpp). Only rank 0's main thread and the workers'
 // main threads call MPI (MPI_THREAD_FUNNELED). Nobody blocks in MPI: Open MPI busy-polls in
 // a blocking receive, which would take a core from the cube tests, so every wait is
 // MPI_Iprobe with short sleeps (class Backoff) - and can time out.

@@ -6,7 +6,7 @@
 // same config, so the folders must be on a file system all nodes see), says hello (code
 // version, host, model fingerprint), loads rank 0's packings from the shared packing cache,
 // then runs one request at a time (OpenMP threads: OMP_NUM_THREADS) until told to stop. The
-// messages are calibrate/run_message.hpp's versioned byte strings.
+// messages are calibrate/execution/run_message.hpp's versioned byte strings.
 //
 // Faults (Open MPI 4.1 as Debian 12 builds it has no ULFM, so a rank that dies takes the job):
 //   - a run that fails, throws or times out on its worker is an outcome (status and reason)

@@ -3,7 +3,7 @@
 // independent runs - each a pure function of (sand, packing seed, material) - and is told of
 // every finished one; the optimizer, the ledger and the reports never know where a run went.
 //   ThreadExecutor  `workers` std::threads in this process, one OpenMP thread each
-//   MpiExecutor     worker ranks of an MPI job (calibrate/mpi_executor.hpp; GRADEM_MPI builds)
+//   MpiExecutor     worker ranks of an MPI job (calibrate/execution/mpi_executor.hpp; GRADEM_MPI builds)
 // A study (several calibrations) can share one executor: it only sees RunRequests.
 #include <cstdint>
 #include <functional>

@@ -1,4 +1,4 @@
-// What every solver shares (calibrate/solver.hpp): the best-point tracker, the finite-difference
+// What every solver shares (calibrate/solvers/solver.hpp): the best-point tracker, the finite-difference
 // step, the noise-floor objective, and the dispatch from [solver] method to a solver.
 #include <cmath>
 

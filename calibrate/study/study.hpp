@@ -82,7 +82,7 @@ struct StudyResult {
 struct StudyExecution;
 
 /// Runs the study; its runs go to threads of this process, or to `execution`'s executor (the
-/// worker ranks of an MPI job: calibrate/study_models.hpp), with the same results.
+/// worker ranks of an MPI job: calibrate/study/study_models.hpp), with the same results.
 StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log = {},
                       const StudyExecution* execution = nullptr);
 

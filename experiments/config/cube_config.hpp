@@ -8,7 +8,7 @@
 //   [size_rule]  min_diameter_mm, max_diameter_mm, scale
 //   [genesis]    edge_mm, target_solid_fraction, locked_in_stress_mpa, ..., seed
 //   [material]   model (bond law), effective_modulus_gpa, ..., tensile_strength_cv, ...; the keys are
-//                the rows of experiments/material_table.hpp
+//                the rows of experiments/config/material_table.hpp
 //   [test]       strain_rate_per_s (number or "auto"), ramp_strain, stop_fraction, ...
 //   [output]     dir, cache_dir, vtk, vtk_every
 //

@@ -2,10 +2,10 @@
 // The material-parameter table: ONE row per micro-parameter of MaterialParams. Everything that
 // names, converts, checks, writes or calibrates a material parameter reads this table:
 //   - the cube config reader ([material] keys, unit conversion, struct defaults, which keys a
-//     bond model accepts)                                         experiments/cube_config.cpp
+//     bond model accepts)                                         experiments/config/cube_config.cpp
 //   - the validator (MaterialParams::invalid_reason, ranges in config units)
-//                                                                 experiments/cube_test.cpp
-//   - the JSON writer (macro.json "material": SI and config units) experiments/cube_output.cpp
+//                                                                 experiments/virtual_tests/cube_test.cpp
+//   - the JSON writer (macro.json "material": SI and config units) reports/cube_output.cpp
 //   - the calibration (parameter names, units, roles, default bounds and scale, how a value is
 //     applied; the ledger's material key)                        calibrate/parameters.cpp,
 //                                                                 calibrate/cube_model.cpp

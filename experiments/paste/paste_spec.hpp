@@ -1,6 +1,6 @@
 #pragma once
 // The settings of an explicit-paste specimen: the mix design and how the paste
-// particles are made (experiments/paste_fill.hpp), carried by SpecimenSpec::paste so every
+// particles are made (experiments/paste/paste_fill.hpp), carried by SpecimenSpec::paste so every
 // command that loads a specimen (compress, tension, calibrate, study) gets them unchanged.
 #include <cstdint>
 #include <optional>

@@ -82,7 +82,7 @@ struct Packing {
     double radius_growth = 1.0;        ///< multiplier applied to every radius (1: the box moves instead) [-]
     bool converged = false;            ///< stress and equilibrium tolerances met (by the World)
     double seconds = 0.0;              ///< wall-clock time of genesis [s]
-    // --- explicit paste (experiments/paste_fill.hpp); empty / 0 for a sand-only packing ---
+    // --- explicit paste (experiments/paste/paste_fill.hpp); empty / 0 for a sand-only packing ---
     std::vector<std::uint8_t> family;  ///< per grain: 0 sand, 1 paste; empty: all sand
     double paste_density = 0.0;        ///< density of paste particles [kg/m^3]
     [[nodiscard]] double edge() const { return box_hi.z - box_lo.z; }

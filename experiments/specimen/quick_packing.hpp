@@ -4,7 +4,7 @@
 // drawn per kind and shrunk where needed so that no two spheres overlap, then bonded at the smallest gaps so every particle has about
 // `bonded_coordination` bonded neighbours. It costs O(N) and builds 1.2 million spheres in
 // seconds, which DEM genesis (servo-controlled compaction) cannot; it is NOT a specimen for
-// calibration: that is genesis' job (experiments/genesis.hpp, docs/genesis.md).
+// calibration: that is genesis' job (experiments/specimen/genesis.hpp, docs/genesis.md).
 #include <cstdint>
 
 #include "core/particles.hpp"

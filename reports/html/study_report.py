@@ -1,7 +1,7 @@
 """report.html of `gradem study`: the verdict in plain sentences, the kind's own figures, the
 study's tables and its runs. Input: study.json (schema gradem-study/1) of the study's output
-folder; the `data` shape of each kind is written by calibrate/study_kinds.cpp and
-calibrate/study_analysis.cpp.
+folder; the `data` shape of each kind is written by calibrate/study/study_kinds.cpp and
+calibrate/study/study_analysis.cpp.
 
 Figures per kind (the count is fixed, whatever the data, so the page's check stays simple):
   gradation_effect  2: simulated vs lab difference a − b with 95 % intervals; the seed values per sand
