@@ -21,6 +21,10 @@
 
 namespace gradem::cal {
 
+/// A run's value of a target quantity: chord modulus [Pa], peak stress [Pa] (for a tension run
+/// the tensile strength), strain at peak [-].
+double outcome_value(const RunOutcome& r, Quantity q);
+
 /// A sand's outputs over the seeds: mean and sample standard deviation, by Quantity (the
 /// tension slot holds the tension tests' peak σt [Pa], NaN when none was run).
 struct SandOutcome {

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "calibrate/execution/ledger.hpp"
-#include "calibrate/study/study_kinds.hpp"
+#include "calibrate/study/study.hpp"
 #include "common/atomic_file.hpp"
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"
@@ -59,8 +59,9 @@ std::string markdown(const StudyResult& r) {
     if (r.representative) md << "> **The lab data are REPRESENTATIVE, not measurements.**\n\n";
     md << "- calibration: ";
     for (std::size_t k = 0; k < r.calibration_summaries.size(); ++k) md << (k ? ", " : "") << r.calibration_summaries[k];
-    if (r.config.kind != StudyKind::model_form) md << "\n- packing seeds per sand: " << r.config.seeds.size();
-    md << "\n- DEM runs" << (r.config.kind == StudyKind::model_form ? " (direct-tension tests for sigma_c/sigma_t, each calibration's seeds)" : "")
+    const StudyKindSpec& kind = study_kind(r.config.kind);
+    if (kind.one_calibration) md << "\n- packing seeds per sand: " << r.config.seeds.size();
+    md << "\n- DEM runs" << kind.runs_note
        << ": " << r.runs_executed << " run now, "
        << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed; wall time " << common::clock_text(r.wall_seconds)
        << "\n\n## Answer\n\n";

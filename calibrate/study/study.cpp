@@ -1,4 +1,4 @@
-// The study kinds (study_config.hpp) on top of the calibration's Evaluator: every simulated
+// The study kinds (study_kind.hpp) on top of the calibration's Evaluator: every simulated
 // configuration ("case") is a set of parameter points run on every sand and seed, through the
 // study's own ledger.
 #include "calibrate/study/study.hpp"
@@ -13,11 +13,10 @@
 #include "calibrate/calibration.hpp"
 #include "calibrate/evaluator.hpp"
 #include "calibrate/execution/ledger.hpp"
-#include "calibrate/study/study_kinds.hpp"
+#include "calibrate/study/study_runner.hpp"
 #include "calibrate/study/study_models.hpp"
 #include "common/hash.hpp"
 #include "common/input_error.hpp"
-#include "lab_data/statistics.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -25,10 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 using common::InputError;
 using nlohmann::json;
-
-double output_of(const RunOutcome& r, Quantity q) {
-    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak ? r.peak_pa : r.strain_at_peak;
-}
 
 json read_json(const fs::path& file) {
     std::ifstream in(file);
@@ -42,44 +37,12 @@ json read_json(const fs::path& file) {
 
 }  // namespace
 
-// --- statistics --------------------------------------------------------------------------
-
-double student_t_975(double dof) {
-    if (!(dof > 0.0)) return std::nan("");
-    double lo = 0.0, hi = 1000.0;  // p(t) = two-sided tail; find p = 0.05
-    for (int k = 0; k < 200; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (lab::student_t_two_sided_p(mid, dof) > 0.05 ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-Sample sample_of(const std::vector<double>& values) {
-    const lab::SampleSummary s = lab::summarize(values);
-    return {s.mean, s.std, static_cast<int>(s.n)};
-}
-
-Interval welch_interval(const Sample& a, const Sample& b) {
-    Interval out{a.mean - b.mean, std::nan(""), std::nan("")};
-    if (a.n < 2 || b.n < 2) return out;
-    const double va = a.std * a.std / a.n, vb = b.std * b.std / b.n;
-    const double se = std::sqrt(va + vb);
-    if (!(se > 0.0)) {
-        out.low = out.high = out.estimate;
-        return out;
-    }
-    // Welch-Satterthwaite degrees of freedom.
-    const double dof = (va + vb) * (va + vb) / (va * va / (a.n - 1) + vb * vb / (b.n - 1));
-    const double t = student_t_975(dof);
-    out.low = out.estimate - t * se;
-    out.high = out.estimate + t * se;
-    return out;
-}
+// --- cases ------------------------------------------------------------------------------
 
 Sample StudyCase::sample(std::size_t sand, Quantity q) const {
     std::vector<double> v;
     for (const RunOutcome& r : runs[sand])
-        if (r.ok()) v.push_back(output_of(r, q));
+        if (r.ok()) v.push_back(outcome_value(r, q));
     return sample_of(v);
 }
 
@@ -114,6 +77,7 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
         throw InputError(where, 0, "not a gradem calibration summary (schema \"gradem-calibration/1\" expected)");
     CalibratedPoint cp;
     cp.summary = summary_json;
+    cp.document = j;
     const fs::path config = j.value("config", "");
     if (config.empty() || !fs::exists(config))
         throw InputError(where, 0, "the calibration's config '" + config.string() +
@@ -226,36 +190,35 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
 
 // --- the whole study -----------------------------------------------------------------------
 
+namespace {
+
+/// The calibration(s) the kind studies, each checked (and the study's sands against it)
+/// before the study's ledger is opened.
+std::vector<CalibratedPoint> load_studied(const StudyConfig& config, StudyResult& result) {
+    std::vector<CalibratedPoint> points;
+    const std::vector<fs::path> files = study_kind(config.kind).one_calibration ? std::vector<fs::path>{config.calibration}
+                                                                                : config.calibrations;
+    for (const fs::path& file : files) {
+        points.push_back(load_calibrated_point(file));
+        (void)as_study_problem(points.back().problem, config);
+        result.calibration_summaries.push_back(file.string());
+        result.representative = result.representative || points.back().problem.representative;
+    }
+    return points;
+}
+
+}  // namespace
+
 StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log, const StudyExecution* execution) {
     const auto start = std::chrono::steady_clock::now();
     StudyResult result;
     result.config = config;
-    auto count_runs = [&result](const StudyRunner& runner) {
-        result.runs_executed = runner.executed();
-        result.runs_from_ledger = runner.from_ledger();
-        result.runs_failed = runner.failed();
-    };
-    if (config.kind == StudyKind::model_form) {
-        std::vector<CalibratedPoint> points;  // every summary checked before the ledger is opened
-        for (const fs::path& file : config.calibrations) points.push_back(load_calibrated_point(file));
-        StudyRunner runner(config, log, execution);
-        run_model_form(points, runner, result);
-        count_runs(runner);
-    } else {
-        const CalibratedPoint point = load_calibrated_point(config.calibration);
-        result.calibration_summaries.push_back(config.calibration.string());
-        result.representative = point.problem.representative;
-        (void)as_study_problem(point.problem, config);  // the study's sands are checked before the ledger opens
-        StudyRunner runner(config, log, execution);
-        switch (config.kind) {
-            case StudyKind::gradation_effect: run_gradation_effect(point, runner, result); break;
-            case StudyKind::resolution: run_size_sweep(point, runner, result, SweepKind::edge); break;
-            case StudyKind::fines_truncation: run_size_sweep(point, runner, result, SweepKind::min_diameter); break;
-            case StudyKind::sensitivity: run_sensitivity(point, runner, result); break;
-            case StudyKind::model_form: break;
-        }
-        count_runs(runner);
-    }
+    const std::vector<CalibratedPoint> calibrations = load_studied(config, result);
+    StudyRunner runner(config, log, execution);
+    study_kind(config.kind).run(calibrations, runner, result);
+    result.runs_executed = runner.executed();
+    result.runs_from_ledger = runner.from_ledger();
+    result.runs_failed = runner.failed();
     result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }

@@ -2,7 +2,8 @@
 // `gradem study`: parameter studies run through the calibration's machinery - the same
 // CubeModel (cached packings), Evaluator and SQLite ledger - so a study is resumable after
 // `kill -9`, identical runs are served from the ledger and failed runs are recorded and shown.
-// Each kind is one function below; study_config.hpp says what each answers.
+// Each kind is one file in calibrate/study/kinds/ (study_kind.hpp lists them); run_study loads
+// the calibration(s) studied, opens the study's ledger and runs the kind.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,6 +12,7 @@
 #include "calibrate/cube_model.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate/study/study_config.hpp"
+#include "calibrate/study/study_statistics.hpp"
 
 namespace gradem::cal {
 
@@ -21,28 +23,13 @@ struct CalibratedPoint {
     CalibrationProblem problem;
     std::vector<double> values;
     std::string bond_model;  ///< the material's bond model name (", explicit_paste" appended for paste specimens)
+    nlohmann::json document;  ///< summary.json as read
 };
 
 /// Reads summary.json and its calibration problem; InputError naming the summary when it
 /// does not exist, is not a calibration summary, or no longer matches its config (other
 /// sands, other lab results, a parameter outside the config's bounds).
 CalibratedPoint load_calibrated_point(const std::filesystem::path& summary_json);
-
-/// 95 % two-sided Student-t quantile t_{0.975, dof} (bisection on the exact CDF).
-double student_t_975(double dof);
-
-/// Mean, sample standard deviation and count of the finite values.
-struct Sample {
-    double mean = 0.0, std = 0.0;
-    int n = 0;
-};
-Sample sample_of(const std::vector<double>& values);
-
-/// Welch interval of mean(a) - mean(b): estimate and 95 % bounds (NaN when n < 2 on a side).
-struct Interval {
-    double estimate = 0.0, low = 0.0, high = 0.0;
-};
-Interval welch_interval(const Sample& a, const Sample& b);
 
 /// One simulated configuration of a study: a label, the swept value (if any), and every run.
 struct StudyCase {

@@ -1,9 +1,9 @@
 #include "calibrate/study/study_config.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 
+#include "calibrate/study/study_keys.hpp"
 #include "common/input_error.hpp"
 #include "common/toml_section.hpp"
 
@@ -22,98 +22,62 @@ StudyKind parse_kind(const std::string& text, Context& ctx) {
                      "key 'study.kind' = \"" + text + "\": expected " + enum_names_text<StudyKind>(NameList::quoted_or));
 }
 
-/// The array `key` as a list of `T`, each checked by `read` (which throws on a bad item).
-template <typename T, typename Read>
-std::vector<T> read_list(Section& s, const char* key, const char* expected, Read&& read) {
-    const toml::node* n = s.node(key);
-    if (!n) return {};
-    if (!n->is_array() || n->as_array()->empty()) s.type_error(key, *n, expected);
-    std::vector<T> out;
-    for (const toml::node& item : *n->as_array()) {
-        const auto v = read(item);
-        if (!v) s.type_error(key, *n, expected);
-        if (std::find(out.begin(), out.end(), *v) != out.end()) s.type_error(key, *n, std::string(expected) + " (distinct values)");
-        out.push_back(*v);
+/// "kind \"a\"" or "kinds \"a\" and \"b\"": the kinds whose own keys include `key`.
+std::string owners_of(const std::string& key) {
+    std::vector<std::string> owners;
+    for (const std::string& name : enum_names<StudyKind>()) {
+        const StudyKindSpec& spec = study_kind(*parse_enum<StudyKind>(name));
+        if (std::find(spec.keys.begin(), spec.keys.end(), key) != spec.keys.end()) owners.push_back("\"" + name + "\"");
     }
-    s.record(key, *n, false);
+    std::string out = owners.size() == 1 ? "kind " : "kinds ";
+    for (std::size_t k = 0; k < owners.size(); ++k) out += (k == 0 ? "" : k + 1 == owners.size() ? " and " : ", ") + owners[k];
     return out;
 }
 
-std::optional<double> positive_number(const toml::node& n) {
-    const auto v = n.value<double>();
-    if (!v || !std::isfinite(*v) || *v <= 0.0) return std::nullopt;
-    return v;
+/// A key of another kind in this kind's study: refused, naming the kinds it belongs to.
+void refuse_other_kinds_keys(Context& ctx, Section& s, const StudyKindSpec& own) {
+    for (const std::string& name : enum_names<StudyKind>())
+        for (const std::string& key : study_kind(*parse_enum<StudyKind>(name)).keys) {
+            const toml::node* n = s.node(key.c_str());
+            if (n && std::find(own.keys.begin(), own.keys.end(), key) == own.keys.end())
+                throw InputError(ctx.file, line_of(*n), "key 'study." + key + "' belongs to " + owners_of(key));
+        }
 }
 
-std::optional<std::uint64_t> positive_integer(const toml::node& n) {
-    if (!n.is_integer() || n.as_integer()->get() < 1) return std::nullopt;
-    return static_cast<std::uint64_t>(n.as_integer()->get());
-}
-
-std::optional<std::string> text_item(const toml::node& n) {
-    if (!n.is_string()) return std::nullopt;
-    return n.as_string()->get();
-}
-
-void require_file(Context& ctx, const std::string& key, const fs::path& path, const std::string& what) {
-    if (!fs::exists(path))
-        throw InputError(ctx.file, ctx.keys[key].line, "key '" + key + "': " + path.string() + " not found; " + what);
+/// The calibration(s) studied: study.calibration, or study.calibrations for kinds comparing several.
+void read_calibrations(StudyKeys& keys, const StudyKindSpec& spec) {
+    Section& s = keys.section;
+    StudyConfig& c = keys.config;
+    s.path("calibration", c.calibration);
+    const auto summaries =
+        study_keys::read_list<std::string>(s, "calibrations", "an array of summary.json paths", study_keys::text_item);
+    for (const auto& p : summaries) c.calibrations.push_back((keys.context.dir / p).lexically_normal());
+    if (spec.one_calibration) {
+        if (c.calibration.empty())
+            throw InputError(keys.context.file, 0, "key 'study.calibration' is required: the summary.json of a `gradem calibrate` run");
+        study_keys::require_file(keys, "study.calibration", c.calibration, "run the calibration first (gradem calibrate <config>)");
+    } else {
+        if (c.calibrations.empty()) study_keys::refuse(keys, "calibrations", "key 'study.calibrations' is required: one summary.json per model");
+        for (const auto& p : c.calibrations) study_keys::require_file(keys, "study.calibrations", p, "run that calibration first");
+    }
 }
 
 void read_study(Context& ctx, const toml::table& root, StudyConfig& c) {
     Section s(ctx, root, "study");
     std::string kind;
     s.text("kind", kind);
-    s.path("calibration", c.calibration);
-    const auto summaries = read_list<std::string>(s, "calibrations", "an array of summary.json paths", text_item);
-    for (const auto& p : summaries) c.calibrations.push_back((ctx.dir / p).lexically_normal());
-    if (auto seeds = read_list<std::uint64_t>(s, "seeds", "a non-empty array of positive integers", positive_integer);
-        !seeds.empty())
-        c.seeds = seeds;
-    c.sands = read_list<std::string>(s, "sands", "an array of sand names", text_item);
-    const auto edges = read_list<double>(s, "edges_mm", "a non-empty array of positive numbers [mm]", positive_number);
-    const auto mins = read_list<double>(s, "min_diameters_mm", "a non-empty array of positive numbers [mm]", positive_number);
-    c.parameters = read_list<std::string>(s, "parameters", "an array of parameter names", text_item);
-    s.real("step", c.step);
-    s.real("tolerance", c.tolerance);
-    s.finish();
     if (kind.empty()) throw InputError(ctx.file, 0, "key 'study.kind' is required");
     c.kind = parse_kind(kind, ctx);
-    auto line = [&](const char* key) { return ctx.keys[std::string("study.") + key].line; };
-    c.sands_line = line("sands");
-    if (!c.sands.empty() && c.kind != StudyKind::resolution && c.kind != StudyKind::fines_truncation)
-        throw InputError(ctx.file, line("sands"),
-                         "key 'study.sands' belongs to kinds \"resolution\" and \"fines_truncation\" (the others compare every sand)");
-    const bool needs_summary = c.kind != StudyKind::model_form;
-    if (needs_summary) {
-        if (c.calibration.empty())
-            throw InputError(ctx.file, 0, "key 'study.calibration' is required: the summary.json of a `gradem calibrate` run");
-        require_file(ctx, "study.calibration", c.calibration, "run the calibration first (gradem calibrate <config>)");
-    } else {
-        if (c.calibrations.size() < 1)
-            throw InputError(ctx.file, line("calibrations"), "key 'study.calibrations' is required: one summary.json per model");
-        for (const auto& p : c.calibrations) require_file(ctx, "study.calibrations", p, "run that calibration first");
-    }
-    if (c.kind == StudyKind::resolution) {
-        if (edges.size() < 2) throw InputError(ctx.file, line("edges_mm"), "key 'study.edges_mm' needs at least two cube edges [mm]");
-        c.sweep_mm = edges;
-        if (!(c.tolerance >= 0.0 && c.tolerance < 1.0))
-            throw InputError(ctx.file, line("tolerance"), "key 'study.tolerance' must be a relative change in [0, 1)");
-    } else if (!edges.empty()) {
-        throw InputError(ctx.file, line("edges_mm"), "key 'study.edges_mm' belongs to kind \"resolution\"");
-    } else if (line("tolerance") > 0) {
-        throw InputError(ctx.file, line("tolerance"), "key 'study.tolerance' belongs to kind \"resolution\"");
-    }
-    if (c.kind == StudyKind::fines_truncation) {
-        if (mins.size() < 2)
-            throw InputError(ctx.file, line("min_diameters_mm"), "key 'study.min_diameters_mm' needs at least two sizes [mm]");
-        c.sweep_mm = mins;
-    } else if (!mins.empty()) {
-        throw InputError(ctx.file, line("min_diameters_mm"), "key 'study.min_diameters_mm' belongs to kind \"fines_truncation\"");
-    }
-    if (!(c.step > 0.0 && c.step <= 0.5)) throw InputError(ctx.file, line("step"), "key 'study.step' must be in (0, 0.5]");
-    if (c.kind == StudyKind::gradation_effect && c.seeds.size() < 2)
-        throw InputError(ctx.file, line("seeds"), "key 'study.seeds': a 95 % interval needs at least two seeds per sand");
+    const StudyKindSpec& spec = study_kind(c.kind);
+    refuse_other_kinds_keys(ctx, s, spec);
+    if (auto seeds = study_keys::read_list<std::uint64_t>(s, "seeds", "a non-empty array of positive integers",
+                                                          study_keys::positive_integer);
+        !seeds.empty())
+        c.seeds = seeds;
+    StudyKeys keys{s, ctx, c};
+    spec.read_keys(keys);
+    read_calibrations(keys, spec);
+    s.finish();
     std::sort(c.sweep_mm.begin(), c.sweep_mm.end());
 }
 
@@ -132,6 +96,37 @@ void read_run_and_output(Context& ctx, const toml::table& root, StudyConfig& c) 
 }
 
 }  // namespace
+
+int StudyKeys::line(const char* key) const { return context.keys[std::string("study.") + key].line; }
+
+namespace study_keys {
+
+std::optional<double> positive_number(const toml::node& n) {
+    const auto v = n.value<double>();
+    if (!v || !std::isfinite(*v) || *v <= 0.0) return std::nullopt;
+    return v;
+}
+
+std::optional<std::uint64_t> positive_integer(const toml::node& n) {
+    if (!n.is_integer() || n.as_integer()->get() < 1) return std::nullopt;
+    return static_cast<std::uint64_t>(n.as_integer()->get());
+}
+
+std::optional<std::string> text_item(const toml::node& n) {
+    if (!n.is_string()) return std::nullopt;
+    return n.as_string()->get();
+}
+
+void require_file(StudyKeys& keys, const std::string& key, const fs::path& path, const std::string& what) {
+    if (!fs::exists(path))
+        throw InputError(keys.context.file, keys.context.keys[key].line, "key '" + key + "': " + path.string() + " not found; " + what);
+}
+
+void refuse(const StudyKeys& keys, const char* key, const std::string& what) {
+    throw InputError(keys.context.file, keys.line(key), what);
+}
+
+}  // namespace study_keys
 
 std::string StudyConfig::describe() const {
     std::ostringstream d;

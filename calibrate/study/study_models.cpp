@@ -5,7 +5,6 @@
 
 #include "calibrate/calibration.hpp"
 #include "calibrate/study/study.hpp"
-#include "calibrate/study/study_kinds.hpp"
 #include "common/input_error.hpp"
 
 namespace gradem::cal {
@@ -52,14 +51,9 @@ CalibrationProblem as_study_problem(CalibrationProblem problem, const StudyConfi
 }
 
 std::vector<CalibrationProblem> study_problems(const StudyConfig& config) {
-    if (config.kind == StudyKind::model_form) return {};
-    const CalibratedPoint point = load_calibrated_point(config.calibration);
-    std::vector<CalibrationProblem> problems;
-    switch (config.kind) {
-        case StudyKind::resolution: problems = sweep_problems(point, config, SweepKind::edge); break;
-        case StudyKind::fines_truncation: problems = sweep_problems(point, config, SweepKind::min_diameter); break;
-        default: problems = {point.problem}; break;
-    }
+    const StudyKindSpec& kind = study_kind(config.kind);
+    if (kind.problems == nullptr) return {};
+    std::vector<CalibrationProblem> problems = kind.problems(load_calibrated_point(config.calibration), config);
     for (CalibrationProblem& p : problems) p = as_study_problem(std::move(p), config);
     return problems;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // A study on the run executors (threads or MPI ranks). An MPI job holds one CubeModel per
-// rank, but a study's cases may differ in specimen (resolution: the cube edge,
-// fines_truncation: the smallest kept grain), each with its own model. StudyModels is the
+// rank, but a study's cases may differ in specimen (the cube edge or the smallest kept grain
+// of a size sweep), each with its own model. StudyModels is the
 // models of every case as one CubeModel: case k's sand s is its sand offset(k) + s, so the
 // executor's requests say which case they belong to, and every rank makes the same list
 // from the study file (study_problems). CaseExecutor gives one case's Evaluator that
@@ -22,8 +22,8 @@ namespace gradem::cal {
 /// and a budget that never stops it (a study runs what it asks for).
 CalibrationProblem as_study_problem(CalibrationProblem problem, const StudyConfig& config);
 
-/// Every distinct problem the study's cases run, as as_study_problem() makes them, in the
-/// order the study runs them (none for model_form, which only reads summaries). Throws
+/// Every distinct problem the study's compression cases run, as as_study_problem() makes them,
+/// in the order the study runs them (StudyKindSpec::problems; none for a kind without). Throws
 /// InputError as run_study would (missing calibration, a bad sweep value).
 std::vector<CalibrationProblem> study_problems(const StudyConfig& config);
 

@@ -7,7 +7,8 @@
 
 #include "calibrate/execution/run_executor.hpp"
 #include "calibrate/study/study.hpp"
-#include "calibrate/study/study_kinds.hpp"
+#include "calibrate/study/size_sweep.hpp"
+#include "calibrate/study/study_tables.hpp"
 #include "calibrate/study/study_models.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
