@@ -1,4 +1,4 @@
-// `gradem report <lab|compress|calibrate|study> <folder>`: (re)makes report.html from the outputs of
+// `gradem report <kind> <folder>`: (re)makes report.html from the outputs of
 // that command in <folder> — e.g. after installing python3-matplotlib, without re-running a long
 // calibration. The commands themselves call the same writer when they finish.
 // Exit status: 0 written, 1 a missing folder or a missing/garbled output file, 2 bad usage, 3 the
