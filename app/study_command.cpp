@@ -2,9 +2,9 @@
 // (calibrate/study/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
 // into its output folder, then report.html (reports/html/study_report.py). Milestones go to
 // stderr, the answer and the report path to stdout.
-// Under an MPI launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) rank 0 runs the
-// study and ranks 1..N-1 run its cube tests, as for gradem calibrate
-// (calibrate/study/study_models.hpp); the answer is the same as with threads.
+// Under a launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) its cube tests run on that
+// job's executor, as for gradem calibrate (calibrate/execution/launch.hpp,
+// calibrate/study/study_models.hpp); the answer is the same as with threads.
 // Exit status: 0 done, 1 bad input (study, ledger or MPI setup), 2 bad usage, 3 every run failed.
 #include <cstdio>
 #include <iostream>
@@ -14,12 +14,9 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
-#include "app/mpi_launch.hpp"
+#include "calibrate/execution/launch.hpp"
 #include "calibrate/study/study.hpp"
 #include "calibrate/study/study_models.hpp"
-#ifdef GRADEM_HAVE_MPI
-#include "calibrate/execution/mpi_executor.hpp"
-#endif
 #include "common/text_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/study_report.hpp"
@@ -77,32 +74,25 @@ private:
 
 int StudyCommand::run() {
     const StudyOptions& o = o_;
-
-#ifdef GRADEM_HAVE_MPI
-    if (cal::mpi::launched()) {
-        // Every rank reads the study and makes the models of all its cases; the workers serve
-        // them, rank 0 prepares them once (packings into the shared cache) and runs the study.
-        cal::StudyConfig config;
-        cal::StudyModels* models = nullptr;
-        return cal::mpi::run_job(
-            [&](int) {
-                config = load_config(o);
-                auto all = std::make_unique<cal::StudyModels>(cal::study_problems(config));
-                models = all.get();
-                inputs_checked();
-                return cal::mpi::JobModel{std::move(all), config.workers};
-            },
-            [&](cal::CubeModel&, cal::mpi::MpiExecutor& executor) {
-                say("runs on " + executor.describe());
-                executor.prepare(config.seeds, say);
-                const cal::StudyExecution execution{*models, executor};
-                return study_and_report(config, &execution);
-            });
-    }
-#else
-    refuse_mpi_launch_without_mpi();
-#endif
-    const cal::StudyConfig config = load_config(o);
+    // Every process reads the study and makes the models of all its cases; on a launched
+    // executor the coordinating process prepares them once (packings into the shared cache).
+    cal::StudyConfig config;
+    cal::StudyModels* models = nullptr;
+    const auto make_job = [&](int) {
+        config = load_config(o);
+        auto all = std::make_unique<cal::StudyModels>(cal::study_problems(config));
+        models = all.get();
+        inputs_checked();
+        return cal::JobModel{std::move(all), config.workers};
+    };
+    const auto study = [&](cal::CubeModel&, cal::RunExecutor& executor) {
+        say("runs on " + executor.describe());
+        executor.prepare(config.seeds, say);
+        const cal::StudyExecution execution{*models, executor};
+        return study_and_report(config, &execution);
+    };
+    if (const auto status = cal::run_on_launched_executor(make_job, study)) return *status;
+    config = load_config(o);
     inputs_checked();
     return study_and_report(config, nullptr);
 }

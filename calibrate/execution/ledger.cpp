@@ -9,10 +9,6 @@
 #include <ctime>
 #include <sstream>
 
-#ifndef GRADEM_CODE_VERSION
-#define GRADEM_CODE_VERSION "unknown"
-#endif
-
 namespace gradem::cal {
 namespace {
 
@@ -142,8 +138,6 @@ void parse_curve(const std::string& text, RunOutcome& o) {
 }
 
 }  // namespace
-
-const char* code_version() { return GRADEM_CODE_VERSION; }
 
 Ledger::Ledger(const fs::path& path, const std::string& fingerprint, const std::string& description) : path_(path) {
     const bool existed = fs::exists(path);

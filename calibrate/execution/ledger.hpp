@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "calibrate/cube_model.hpp"
+#include "calibrate/execution/code_version.hpp"  // stored with every run
 #include "calibrate/execution/run_executor.hpp"
 
 struct sqlite3;
@@ -40,9 +41,6 @@ class LedgerMismatch : public LedgerError {
 public:
     using LedgerError::LedgerError;
 };
-
-/// The code version stored with every run (project version and git commit at build time).
-const char* code_version();
 
 /// The ledger layout this build writes (meta schema_version; 1 when absent).
 inline constexpr int kLedgerSchemaVersion = 2;

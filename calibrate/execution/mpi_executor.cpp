@@ -18,7 +18,7 @@
 #include <optional>
 #include <thread>
 
-#include "calibrate/execution/ledger.hpp"
+#include "calibrate/execution/code_version.hpp"
 #include "calibrate/execution/run_message.hpp"
 #include "common/hash.hpp"
 

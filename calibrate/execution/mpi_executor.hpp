@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "calibrate/execution/launch.hpp"
 #include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::cal::mpi {
@@ -114,10 +115,7 @@ private:
 /// worker's load error, reported by rank 0); the workers serve; rank 0 makes an MpiExecutor
 /// and returns `coordinate(model, executor)`. Rank 0's errors are rethrown after the workers
 /// were stopped and MPI finalized; a worker returns its exit code.
-struct JobModel {
-    std::unique_ptr<CubeModel> model;
-    int threads = 1;  ///< rank 0's threads for making packings
-};
+using JobModel = cal::JobModel;  ///< the model every rank makes; threads: rank 0's for making packings
 int run_job(const std::function<JobModel(int rank)>& make_model, const std::function<int(CubeModel&, MpiExecutor&)>& coordinate,
             const WorkerIdentity& identity = {});
 
