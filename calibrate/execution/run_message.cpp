@@ -1,6 +1,7 @@
 #include "calibrate/execution/run_message.hpp"
 
 #include <cstring>
+#include <string_view>
 #include <type_traits>
 
 namespace gradem::cal::wire {
@@ -9,9 +10,9 @@ namespace {
 constexpr std::uint32_t kMagic = 0x4D445247;  // "GRDM" little-endian
 constexpr std::uint32_t kByteOrder = 0x01020304;
 
-// Every shared field of the material is written below, one by one; a bond law's own fields are
+// Every shared field of the material is listed below, one by one; a bond law's own fields are
 // written from its parameter rows (Law::kParameters). A new shared field changes these sizes:
-// serialise it in put_material/get_material (and in material_key), then update the sizes.
+// add it to the material's fields() (and to material_key), then update the sizes.
 static_assert(sizeof(ContactParams) == 3 * 8, "ContactParams changed: serialise the new field in run_message.cpp");
 static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* model, padded */ + sizeof(BondLawParams) +
                                        8 /* replaces_contact, padded */,
@@ -19,14 +20,39 @@ static_assert(sizeof(BondParams) == 9 * 8 /* doubles */ + 8 /* seed */ + 8 /* mo
 static_assert(sizeof(exp::MaterialParams) == 24 + sizeof(BondParams) + 4 * 8 + 3 * 8 /* families */,
               "MaterialParams changed: serialise the new field in run_message.cpp");
 
+// Each message's fields are listed once, in `fields(io, message)`: the Writer writes them and
+// the Reader reads them in that order, so encoder and decoder cannot drift apart. Strings and
+// vectors are a u64 count then the items; enums and bools one byte (a read enum must be one of
+// its table's values, common/named_enum.hpp).
 class Writer {
 public:
     explicit Writer(Kind kind) {
-        u32(kMagic);
-        u32(kProtocolVersion);
-        u32(kByteOrder);
-        u8(static_cast<std::uint8_t>(kind));
+        raw(kMagic);
+        raw(kProtocolVersion);
+        raw(kByteOrder);
+        raw(static_cast<std::uint8_t>(kind));
     }
+    void operator()(std::uint64_t v) { raw(v); }
+    void operator()(std::int64_t v) { raw(v); }
+    void operator()(double v) { raw(v); }
+    void operator()(bool v) { raw(static_cast<std::uint8_t>(v ? 1 : 0)); }
+    template <class E>
+        requires std::is_enum_v<E>
+    void operator()(E v) {
+        raw(static_cast<std::uint8_t>(v));
+    }
+    void operator()(const std::string& s) {
+        raw(static_cast<std::uint64_t>(s.size()));
+        out_ += s;
+    }
+    template <class T>
+    void operator()(const std::vector<T>& v) {
+        raw(static_cast<std::uint64_t>(v.size()));
+        for (const T& x : v) (*this)(x);
+    }
+    std::string take() { return std::move(out_); }
+
+private:
     template <class T>
     void raw(T v) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -34,22 +60,6 @@ public:
         std::memcpy(b, &v, sizeof(T));
         out_.append(b, sizeof(T));
     }
-    void u8(std::uint8_t v) { raw(v); }
-    void u32(std::uint32_t v) { raw(v); }
-    void u64(std::uint64_t v) { raw(v); }
-    void i64(std::int64_t v) { raw(v); }
-    void f64(double v) { raw(v); }
-    void str(const std::string& s) {
-        u64(s.size());
-        out_ += s;
-    }
-    void f64s(const std::vector<double>& v) {
-        u64(v.size());
-        for (double x : v) f64(x);
-    }
-    std::string take() { return std::move(out_); }
-
-private:
     std::string out_;
 };
 
@@ -61,6 +71,32 @@ public:
         if (k != expected)
             throw WireError(std::string("expected a '") + to_string(expected) + "' message, got '" + to_string(k) + "'");
     }
+    void operator()(std::uint64_t& v) { v = raw<std::uint64_t>(); }
+    void operator()(std::int64_t& v) { v = raw<std::int64_t>(); }
+    void operator()(double& v) { v = raw<double>(); }
+    void operator()(bool& v) { v = raw<std::uint8_t>() != 0; }
+    template <class E>
+        requires std::is_enum_v<E>
+    void operator()(E& v) {
+        const std::uint8_t byte = raw<std::uint8_t>();
+        v = static_cast<E>(byte);
+        if (std::string_view(to_string(v)) == "unknown") throw WireError("unknown enum value " + std::to_string(byte));
+    }
+    void operator()(std::string& s) {
+        const std::uint64_t n = count(1);
+        s = in_.substr(pos_, n);
+        pos_ += n;
+    }
+    template <class T>
+    void operator()(std::vector<T>& v) {
+        v.resize(count(sizeof(T)));
+        for (T& x : v) (*this)(x);
+    }
+    void end() const {
+        if (pos_ != in_.size()) throw WireError(std::to_string(in_.size() - pos_) + " unexpected bytes at the end of a message");
+    }
+
+private:
     template <class T>
     T raw() {
         if (in_.size() - pos_ < sizeof(T)) throw WireError("truncated message (" + std::to_string(in_.size()) + " bytes)");
@@ -69,85 +105,106 @@ public:
         pos_ += sizeof(T);
         return v;
     }
-    std::uint8_t u8() { return raw<std::uint8_t>(); }
-    std::uint32_t u32() { return raw<std::uint32_t>(); }
-    std::uint64_t u64() { return raw<std::uint64_t>(); }
-    std::int64_t i64() { return raw<std::int64_t>(); }
-    double f64() { return raw<double>(); }
     std::uint64_t count(std::size_t item_bytes) {
-        const std::uint64_t n = u64();
+        const std::uint64_t n = raw<std::uint64_t>();
         if (item_bytes && n > (in_.size() - pos_) / item_bytes) throw WireError("truncated message (count " + std::to_string(n) + ")");
         return n;
     }
-    std::string str() {
-        const std::uint64_t n = count(1);
-        std::string s = in_.substr(pos_, n);
-        pos_ += n;
-        return s;
-    }
-    std::vector<double> f64s() {
-        std::vector<double> v(count(8));
-        for (double& x : v) x = f64();
-        return v;
-    }
-    void end() const {
-        if (pos_ != in_.size()) throw WireError(std::to_string(in_.size() - pos_) + " unexpected bytes at the end of a message");
-    }
-
-private:
     const std::string& in_;
     std::size_t pos_ = 0;
 };
 
-void put_material(Writer& w, const exp::MaterialParams& m) {
-    const ContactParams& c = m.contact;
-    const BondParams& b = m.bond;
-    for (double x : {c.effective_modulus, c.stiffness_ratio, c.friction, b.effective_modulus, b.stiffness_ratio,
-                     b.radius_multiplier, b.moment_factor, b.tensile_strength_mean, b.tensile_strength_std, b.cohesion_mean,
-                     b.cohesion_std, b.friction_angle_deg})
-        w.f64(x);
-    w.u64(b.seed);
-    w.u8(static_cast<std::uint8_t>(b.model));
-    // every law's own fields, in BondModel then row order: integer rows as integers, the others
-    // as the bits of their double
-    for_each_bond_law([&](auto kernel) {
-        using Law = decltype(kernel);
-        for (const auto& row : Law::kParameters) {
-            if (row.field.integer) w.i64(row.field.get_int(b.law<Law>()));
-            else w.f64(row.field.get(b.law<Law>()));
-        }
-    });
-    w.u8(b.replaces_contact ? 1 : 0);
-    for (double x : {m.bond_gap_fraction, m.bond_gap_absolute, m.platen_friction, m.damping}) w.f64(x);
-    w.f64(m.families.itz_strength_factor);
-    w.f64(m.families.itz_modulus_factor);
-    w.u8(m.families.sand_sand_bonded ? 1 : 0);
+// A bond law's row: an integer row as an integer, the others as the bits of their double.
+template <class Row, class Params>
+void law_row(Writer& w, const Row& row, const Params& p) {
+    if (row.field.integer) w(static_cast<std::int64_t>(row.field.get_int(p)));
+    else w(row.field.get(p));
+}
+template <class Row, class Params>
+void law_row(Reader& r, const Row& row, Params& p) {
+    double x = 0.0;
+    std::int64_t n = 0;
+    if (row.field.integer) r(n), row.field.set_int(p, n);
+    else r(x), row.field.set(p, x);
 }
 
-exp::MaterialParams get_material(Reader& r) {
-    exp::MaterialParams m;
-    ContactParams& c = m.contact;
-    BondParams& b = m.bond;
-    for (double* x : {&c.effective_modulus, &c.stiffness_ratio, &c.friction, &b.effective_modulus, &b.stiffness_ratio,
-                      &b.radius_multiplier, &b.moment_factor, &b.tensile_strength_mean, &b.tensile_strength_std,
-                      &b.cohesion_mean, &b.cohesion_std, &b.friction_angle_deg})
-        *x = r.f64();
-    b.seed = r.u64();
-    const std::uint8_t model = r.u8();
-    if (model >= kBondLawCount) throw WireError("unknown bond model " + std::to_string(model));
-    b.model = static_cast<BondModel>(model);
-    for_each_bond_law([&](auto kernel) {
+// Material = exp::MaterialParams, const when written.
+template <class Io, class Material>
+void fields(Io& io, Material& m) {
+    auto& c = m.contact;
+    auto& b = m.bond;
+    for (auto* x : {&c.effective_modulus, &c.stiffness_ratio, &c.friction, &b.effective_modulus, &b.stiffness_ratio,
+                    &b.radius_multiplier, &b.moment_factor, &b.tensile_strength_mean, &b.tensile_strength_std, &b.cohesion_mean,
+                    &b.cohesion_std, &b.friction_angle_deg})
+        io(*x);
+    io(b.seed);
+    io(b.model);
+    for_each_bond_law([&](auto kernel) {  // every law's own rows, in BondModel then row order
         using Law = decltype(kernel);
-        for (const auto& row : Law::kParameters) {
-            if (row.field.integer) row.field.set_int(b.law<Law>(), r.i64());
-            else row.field.set(b.law<Law>(), r.f64());
-        }
+        for (const auto& row : Law::kParameters) law_row(io, row, b.template law<Law>());
     });
-    b.replaces_contact = r.u8() != 0;
-    for (double* x : {&m.bond_gap_fraction, &m.bond_gap_absolute, &m.platen_friction, &m.damping}) *x = r.f64();
-    m.families.itz_strength_factor = r.f64();
-    m.families.itz_modulus_factor = r.f64();
-    m.families.sand_sand_bonded = r.u8() != 0;
+    io(b.replaces_contact);
+    for (auto* x : {&m.bond_gap_fraction, &m.bond_gap_absolute, &m.platen_friction, &m.damping}) io(*x);
+    io(m.families.itz_strength_factor);
+    io(m.families.itz_modulus_factor);
+    io(m.families.sand_sand_bonded);
+}
+
+template <class Io, class M>
+    requires std::is_same_v<std::remove_const_t<M>, Hello>
+void fields(Io& io, M& m) {
+    io(m.code_version), io(m.host), io(m.model_fingerprint), io(m.pid), io(m.threads), io(m.error);
+}
+
+template <class Io, class M>
+    requires std::is_same_v<std::remove_const_t<M>, Prepare>
+void fields(Io& io, M& m) {
+    io(m.seeds);
+}
+
+template <class Io, class M>
+    requires std::is_same_v<std::remove_const_t<M>, Prepared>
+void fields(Io& io, M& m) {
+    io(m.seconds), io(m.error);
+}
+
+template <class Io, class M>
+    requires std::is_same_v<std::remove_const_t<M>, Run>
+void fields(Io& io, M& m) {
+    io(m.job), io(m.code_version), io(m.model_hash), io(m.timeout_s), io(m.request.sand), io(m.request.seed);
+    fields(io, m.request.material);
+    io(m.request.test);
+}
+
+template <class Io, class M>
+    requires std::is_same_v<std::remove_const_t<M>, Result>
+void fields(Io& io, M& m) {
+    auto& o = m.outcome;
+    io(m.job), io(o.status), io(o.reason);
+    io(o.modulus_pa), io(o.peak_pa), io(o.strain_at_peak), io(o.poisson);
+    io(o.particles), io(o.bonds), io(o.steps), io(o.wall_seconds);
+    io(o.curve_strain), io(o.curve_stress_pa);
+}
+
+template <class Io, class M>
+    requires std::is_same_v<std::remove_const_t<M>, Stop>
+void fields(Io& io, M& m) {
+    io(m.reason);
+}
+
+template <class M>
+std::string encode_message(Kind kind, const M& m) {
+    Writer w(kind);
+    fields(w, m);
+    return w.take();
+}
+
+template <class M>
+M decode_message(const std::string& bytes, Kind kind) {
+    Reader r(bytes, kind);
+    M m;
+    fields(r, m);
+    r.end();
     return m;
 }
 
@@ -167,135 +224,26 @@ Kind kind_of(const std::string& bytes) {
     return static_cast<Kind>(k);
 }
 
-std::string encode(const Hello& m) {
-    Writer w(Kind::hello);
-    w.str(m.code_version);
-    w.str(m.host);
-    w.str(m.model_fingerprint);
-    w.i64(m.pid);
-    w.i64(m.threads);
-    w.str(m.error);
-    return w.take();
-}
+std::string encode(const Hello& m) { return encode_message(Kind::hello, m); }
+Hello decode_hello(const std::string& bytes) { return decode_message<Hello>(bytes, Kind::hello); }
 
-Hello decode_hello(const std::string& bytes) {
-    Reader r(bytes, Kind::hello);
-    Hello m;
-    m.code_version = r.str();
-    m.host = r.str();
-    m.model_fingerprint = r.str();
-    m.pid = r.i64();
-    m.threads = r.i64();
-    m.error = r.str();
-    r.end();
-    return m;
-}
+std::string encode(const Prepare& m) { return encode_message(Kind::prepare, m); }
+Prepare decode_prepare(const std::string& bytes) { return decode_message<Prepare>(bytes, Kind::prepare); }
 
-std::string encode(const Prepare& m) {
-    Writer w(Kind::prepare);
-    w.u64(m.seeds.size());
-    for (std::uint64_t s : m.seeds) w.u64(s);
-    return w.take();
-}
+std::string encode(const Prepared& m) { return encode_message(Kind::prepared, m); }
+Prepared decode_prepared(const std::string& bytes) { return decode_message<Prepared>(bytes, Kind::prepared); }
 
-Prepare decode_prepare(const std::string& bytes) {
-    Reader r(bytes, Kind::prepare);
-    Prepare m;
-    m.seeds.resize(r.count(8));
-    for (std::uint64_t& s : m.seeds) s = r.u64();
-    r.end();
-    return m;
-}
+std::string encode(const Run& m) { return encode_message(Kind::run, m); }
+Run decode_run(const std::string& bytes) { return decode_message<Run>(bytes, Kind::run); }
 
-std::string encode(const Prepared& m) {
-    Writer w(Kind::prepared);
-    w.f64(m.seconds);
-    w.str(m.error);
-    return w.take();
-}
-
-Prepared decode_prepared(const std::string& bytes) {
-    Reader r(bytes, Kind::prepared);
-    Prepared m;
-    m.seconds = r.f64();
-    m.error = r.str();
-    r.end();
-    return m;
-}
-
-std::string encode(const Run& m) {
-    Writer w(Kind::run);
-    w.u64(m.job);
-    w.str(m.code_version);
-    w.str(m.model_hash);
-    w.f64(m.timeout_s);
-    w.u64(m.request.sand);
-    w.u64(m.request.seed);
-    put_material(w, m.request.material);
-    w.u8(m.request.test == CubeTest::tension ? 1 : 0);
-    return w.take();
-}
-
-Run decode_run(const std::string& bytes) {
-    Reader r(bytes, Kind::run);
-    Run m;
-    m.job = r.u64();
-    m.code_version = r.str();
-    m.model_hash = r.str();
-    m.timeout_s = r.f64();
-    m.request.sand = r.u64();
-    m.request.seed = r.u64();
-    m.request.material = get_material(r);
-    m.request.test = r.u8() != 0 ? CubeTest::tension : CubeTest::compression;
-    r.end();
-    return m;
-}
-
-std::string encode(const Result& m) {
-    const RunOutcome& o = m.outcome;
-    Writer w(Kind::result);
-    w.u64(m.job);
-    w.u8(static_cast<std::uint8_t>(o.status));
-    w.str(o.reason);
-    for (double x : {o.modulus_pa, o.peak_pa, o.strain_at_peak, o.poisson}) w.f64(x);
-    for (std::int64_t n : {o.particles, o.bonds, o.steps}) w.i64(n);
-    w.f64(o.wall_seconds);
-    w.f64s(o.curve_strain);
-    w.f64s(o.curve_stress_pa);
-    return w.take();
-}
-
+std::string encode(const Result& m) { return encode_message(Kind::result, m); }
 Result decode_result(const std::string& bytes) {
-    Reader r(bytes, Kind::result);
-    Result m;
-    RunOutcome& o = m.outcome;
-    m.job = r.u64();
-    const std::uint8_t status = r.u8();
-    if (status > static_cast<std::uint8_t>(RunStatus::failed)) throw WireError("unknown run status " + std::to_string(status));
-    o.status = static_cast<RunStatus>(status);
-    o.reason = r.str();
-    for (double* x : {&o.modulus_pa, &o.peak_pa, &o.strain_at_peak, &o.poisson}) *x = r.f64();
-    for (std::int64_t* n : {&o.particles, &o.bonds, &o.steps}) *n = r.i64();
-    o.wall_seconds = r.f64();
-    o.curve_strain = r.f64s();
-    o.curve_stress_pa = r.f64s();
-    if (o.curve_strain.size() != o.curve_stress_pa.size()) throw WireError("curve columns of different lengths");
-    r.end();
+    Result m = decode_message<Result>(bytes, Kind::result);
+    if (m.outcome.curve_strain.size() != m.outcome.curve_stress_pa.size()) throw WireError("curve columns of different lengths");
     return m;
 }
 
-std::string encode(const Stop& m) {
-    Writer w(Kind::stop);
-    w.str(m.reason);
-    return w.take();
-}
-
-Stop decode_stop(const std::string& bytes) {
-    Reader r(bytes, Kind::stop);
-    Stop m;
-    m.reason = r.str();
-    r.end();
-    return m;
-}
+std::string encode(const Stop& m) { return encode_message(Kind::stop, m); }
+Stop decode_stop(const std::string& bytes) { return decode_message<Stop>(bytes, Kind::stop); }
 
 }  // namespace gradem::cal::wire
