@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/world.hpp"
+#include "experiments/paste/paste_spec.hpp"
 
 namespace gradem::exp {
 namespace {

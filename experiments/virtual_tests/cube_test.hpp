@@ -17,37 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "core/params.hpp"
 #include "core/world_types.hpp"
-#include "experiments/specimen/genesis.hpp"
+#include "experiments/specimen/packing.hpp"
+#include "experiments/virtual_tests/material_params.hpp"
 #include "experiments/virtual_tests/platen_compression.hpp"
 #include "lab_data/curve_reduction.hpp"
 
 namespace gradem::exp {
-
-/// Micro-parameters of one run (what calibration varies).
-struct MaterialParams {
-    ContactParams contact;            ///< E*, kappa*, grain friction mu
-    BondParams bond;                  ///< Ē*, κ̄, λ̄, β̄, strengths and scatter, φ̄, seed
-    double bond_gap_fraction = 0.1;   ///< installation gap / mean grain radius [-]
-    double bond_gap_absolute = 0.0;   ///< [m] if > 0, the installation gap for every packing (a
-                                      ///< paste-bridge length shared by sands), replacing the fraction
-    /// The installation gap [m] for a packing whose mean grain radius is `mean_radius` [m].
-    [[nodiscard]] double bond_gap(double mean_radius) const {
-        return bond_gap_absolute > 0.0 ? bond_gap_absolute : bond_gap_fraction * mean_radius;
-    }
-    double platen_friction = 0.5;     ///< mu_w [-]
-    double damping = 0.7;             ///< local damping alpha [-]
-    /// Explicit-paste specimens only (Packing::family set; [paste] keys): paste-paste bonds use
-    /// `bond`; paste-sand (interfacial zone) bonds use `bond` with strengths and modulus scaled
-    /// by these factors; sand-sand pairs are bonded with `bond` or frictional only.
-    struct FamilyBonds {
-        double itz_strength_factor = 1.0;  ///< ITZ σ̄_c, c̄ (means and std) / paste's [-]
-        double itz_modulus_factor = 1.0;   ///< ITZ Ē* / paste's [-]
-        bool sand_sand_bonded = false;     ///< false: sand-sand contacts frictional only
-    } families;
-    [[nodiscard]] std::optional<std::string> invalid_reason() const;
-};
 
 struct CubeTestSpec {
     PlatenTestSpec loading;                 ///< rate, ramp, stop rule, output interval
