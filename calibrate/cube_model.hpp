@@ -34,13 +34,13 @@ struct RunRequest {
 };
 
 /// How a run ended (the ledger's `status` column).
-enum class RunStatus { ok, diverged, timeout, failed };
-constexpr EnumNameTable<RunStatus, 4> enum_name_table(RunStatus) {
-    return {{{RunStatus::ok, "ok"}, {RunStatus::diverged, "diverged"}, {RunStatus::timeout, "timeout"}, {RunStatus::failed, "failed"}}};
+enum class OutcomeStatus { ok, diverged, timeout, failed };
+constexpr EnumNameTable<OutcomeStatus, 4> enum_name_table(OutcomeStatus) {
+    return {{{OutcomeStatus::ok, "ok"}, {OutcomeStatus::diverged, "diverged"}, {OutcomeStatus::timeout, "timeout"}, {OutcomeStatus::failed, "failed"}}};
 }
 
 struct RunOutcome {
-    RunStatus status = RunStatus::failed;
+    OutcomeStatus status = OutcomeStatus::failed;
     std::string reason;             ///< why not ok (divergence, timeout, reduction failure)
     double modulus_pa = 0.0;        ///< ASTM C469 chord modulus of the gauge-strain curve [Pa]
     double peak_pa = 0.0;           ///< peak stress [Pa]
@@ -49,7 +49,7 @@ struct RunOutcome {
     std::int64_t particles = 0, bonds = 0, steps = 0;
     double wall_seconds = 0.0;
     std::vector<double> curve_strain, curve_stress_pa;  ///< thinned gauge-strain curve for reports
-    [[nodiscard]] bool ok() const { return status == RunStatus::ok; }
+    [[nodiscard]] bool ok() const { return status == OutcomeStatus::ok; }
 };
 
 class CubeModel {

@@ -202,7 +202,7 @@ std::optional<RunOutcome> Ledger::find(const std::string& run_key) const {
     s.text(1, run_key);
     if (s.step() != SQLITE_ROW) return std::nullopt;
     RunOutcome o;
-    o.status = parse_enum<RunStatus>(s.column_text(0)).value_or(RunStatus::failed);
+    o.status = parse_enum<OutcomeStatus>(s.column_text(0)).value_or(OutcomeStatus::failed);
     o.reason = s.column_text(1);
     o.modulus_pa = s.column_real(2);
     o.peak_pa = s.column_real(3);

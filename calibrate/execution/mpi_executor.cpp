@@ -181,7 +181,7 @@ int serve(CubeModel* model, const std::string& load_error, const WorkerIdentity&
                         result.outcome = model->run(run.request, run.timeout_s);
                     } catch (const std::exception& e) {  // a model that throws: a failed run, not a dead rank
                         result.outcome = RunOutcome{};
-                        result.outcome.status = RunStatus::failed;
+                        result.outcome.status = OutcomeStatus::failed;
                         result.outcome.reason = where(rank, hello.host) + ": " + e.what();
                     }
                     send(0, Kind::result, wire::encode(result));
@@ -400,7 +400,7 @@ private:
                 Worker& worker = x_.workers_[w];
                 worker.lost = g_rank_lost = true;
                 RunOutcome o;
-                o.status = RunStatus::timeout;
+                o.status = OutcomeStatus::timeout;
                 o.reason = where(worker.rank, worker.host) + " sent no result within " + std::to_string(limit_) +
                            " s (timeout_s + grace); the rank is no longer used";
                 o.wall_seconds = limit_;

@@ -321,7 +321,7 @@ cal::StudyCase edge_case(double edge_mm, const std::vector<double>& moduli) {
     c.runs.resize(1);
     for (double e : moduli) {
         cal::RunOutcome r;
-        r.status = cal::RunStatus::ok;
+        r.status = cal::OutcomeStatus::ok;
         r.modulus_pa = e, r.peak_pa = 1.0, r.strain_at_peak = 1.0;
         c.runs[0].push_back(r);
         c.seeds.push_back(c.seeds.size() + 1);
