@@ -98,7 +98,7 @@ LoadFrameTest read_load_frame_bytes(std::string_view bytes, const std::string& f
 /// unit cell; without a unit mm or mm², noted in `notes`). nullopt when there is no such entry or
 /// its value is not a positive number; InputError (file:line) when its unit is of another quantity.
 std::optional<double> metadata_dimension(const RawTable& table, std::initializer_list<const char*> keys,
-                                         std::initializer_list<const char*> not_keys, Quantity q, std::vector<std::string>& notes);
+                                         std::initializer_list<const char*> not_keys, Dimension q, std::vector<std::string>& notes);
 
 /// Stress = load / loaded area (ASTM C109 §11); strain = extensometer (or, without one,
 /// crosshead displacement / height); crosshead strain reported separately.
