@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/json_file.hpp"
 #include "common/json_number.hpp"
 #include "common/toml_section.hpp"
 #include "experiments/config/material_table.hpp"
@@ -441,14 +442,7 @@ TargetStat read_stat(const nlohmann::json& sand, const char* key, double to_si, 
 
 /// The lab results file as JSON, with its 'sands' array checked.
 nlohmann::json read_lab_json(const fs::path& json_file) {
-    std::ifstream in(json_file);
-    if (!in) throw InputError(json_file.string(), 0, "cannot read the lab results");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(json_file.string(), 0, std::string("not valid JSON: ") + e.what());
-    }
+    const nlohmann::json j = common::read_json_file(json_file, "the lab results");
     if (!j.is_object() || !j.contains("sands") || !j["sands"].is_array())
         throw InputError(json_file.string(), 0, "no 'sands' array: expected the lab_results.json written by `gradem lab`");
     return j;

@@ -17,6 +17,7 @@
 #include "calibrate/study/study_models.hpp"
 #include "common/hash.hpp"
 #include "common/input_error.hpp"
+#include "common/json_file.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -24,16 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using common::InputError;
 using nlohmann::json;
-
-json read_json(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw InputError(file.string(), 0, "cannot read the calibration summary");
-    try {
-        return json::parse(in);
-    } catch (const json::exception& e) {
-        throw InputError(file.string(), 0, std::string("not a JSON calibration summary: ") + e.what());
-    }
-}
 
 }  // namespace
 
@@ -72,7 +63,7 @@ int StudyCase::failed() const {
 CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
     const std::string where = summary_json.string();
     if (!fs::exists(summary_json)) throw InputError(where, 0, "calibration summary not found; run `gradem calibrate <config>` first");
-    const json j = read_json(summary_json);
+    const json j = common::read_json_file(summary_json, "the calibration summary");
     if (j.value("schema", "") != "gradem-calibration/1")
         throw InputError(where, 0, "not a gradem calibration summary (schema \"gradem-calibration/1\" expected)");
     CalibratedPoint cp;
