@@ -9,7 +9,6 @@
 #include "calibrate/study/study_keys.hpp"
 #include "calibrate/study/study_runner.hpp"
 #include "calibrate/study/study_tables.hpp"
-#include "common/input_error.hpp"
 #include "common/json_number.hpp"
 
 namespace gradem::cal {
@@ -17,7 +16,6 @@ namespace {
 
 using nlohmann::json;
 constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
-using common::InputError;
 
 void read_keys(StudyKeys& keys) {
     read_swept_sands(keys);

@@ -12,7 +12,6 @@
 #include "calibrate/study/study_runner.hpp"
 #include "calibrate/study/study_tables.hpp"
 #include "calibrate/target_tolerance.hpp"
-#include "common/input_error.hpp"
 #include "common/json_number.hpp"
 
 namespace gradem::cal {
@@ -20,7 +19,6 @@ namespace {
 
 using nlohmann::json;
 constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
-using common::InputError;
 
 void read_keys(StudyKeys&) {}  // study.calibrations: read with the calibration(s) studied
 

@@ -9,15 +9,9 @@
 #include "calibrate/study/study_keys.hpp"
 #include "calibrate/study/study_runner.hpp"
 #include "calibrate/study/study_tables.hpp"
-#include "common/input_error.hpp"
-#include "common/json_number.hpp"
 
 namespace gradem::cal {
 namespace {
-
-using nlohmann::json;
-constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
-using common::InputError;
 
 void read_keys(StudyKeys& keys) {
     StudyConfig& c = keys.config;

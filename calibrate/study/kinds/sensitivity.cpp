@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "calibrate/evaluator.hpp"
-#include "calibrate/study/size_sweep.hpp"
 #include "calibrate/study/study_keys.hpp"
 #include "calibrate/study/study_runner.hpp"
 #include "calibrate/study/study_tables.hpp"
