@@ -42,7 +42,7 @@ void say(const std::string& line) { std::fprintf(console().notes(), "study: %s\n
 int study_and_report(const cal::StudyConfig& config, const cal::StudyExecution* execution) {
     const Console& con = console();
     const cal::StudyResult result = cal::run_study(config, say, execution);
-    cal::write_study_outputs(result);
+    report::write_study_outputs(result);
     if (result.representative) std::fprintf(con.text(), "(the lab data are REPRESENTATIVE, not measurements)\n");
     for (const std::string& v : result.verdict) std::fprintf(con.text(), "%s\n", v.c_str());
     std::fprintf(con.text(), "results in %s\n", config.out_dir.c_str());

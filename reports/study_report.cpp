@@ -11,8 +11,10 @@
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
 namespace {
+
+using namespace cal;  // the study's result types
 
 using nlohmann::json;
 constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
@@ -98,7 +100,7 @@ std::string runs_csv(const StudyResult& r) {
 
 }  // namespace
 
-void write_study_outputs(const StudyResult& r) {
+void write_study_outputs(const cal::StudyResult& r) {
     const json j = {{"schema", "gradem-study/1"},
                     {"kind", to_string(r.config.kind)},
                     {"study_file", r.config.file.string()},
@@ -118,4 +120,4 @@ void write_study_outputs(const StudyResult& r) {
     common::write_file_atomically(r.config.out_dir / "runs.csv", runs_csv(r));
 }
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

@@ -90,7 +90,7 @@ TEST_CASE("study: gradation_effect gives the seed statistics of the model and a 
     CHECK(pair["simulated"]["low"].get<double>() < pair["simulated"]["estimate"].get<double>());
     CHECK(pair["lab"]["estimate"].get<double>() == Approx((cp.problem.targets[0].peak.mean - cp.problem.targets[1].peak.mean) * 1e-6));
     REQUIRE(r.verdict.size() == 3);
-    cal::write_study_outputs(r);
+    report::write_study_outputs(r);
     CHECK(fs::exists(config.out_dir / "study.json"));
     CHECK(fs::exists(config.out_dir / "study.md"));
 
@@ -256,7 +256,7 @@ TEST_CASE("study: model_form tabulates calibrations with their shape index, sigm
     const auto& header = r.tables.front().header;
     CHECK(std::find(header.begin(), header.end(), "sigma_c/sigma_t") != header.end());
     CHECK(std::find(header.begin(), header.end(), "particle-steps/s") != header.end());
-    cal::write_study_outputs(r);
+    report::write_study_outputs(r);
     nlohmann::json written;
     std::ifstream(dir.path / "study-out" / "study.json") >> written;
     CHECK(written["data"]["models"][0]["sands"][1]["compressive_to_tensile_ratio"].is_number());
