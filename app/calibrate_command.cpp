@@ -3,9 +3,9 @@
 // convergence.csv and curves.csv into its output folder. Milestones and a progress line with
 // an ETA go to stderr; the one-line brief report goes to stdout. --plan prints the cost
 // (calibrate/plan.hpp) and stops.
-// Under an MPI launcher (mpirun -np N gradem calibrate ..., GRADEM_MPI builds) rank 0 runs the
-// calibration and ranks 1..N-1 run the cube tests (calibrate/mpi_executor.hpp); the answer is
-// the same as with threads.
+// Under a launcher (mpirun -np N gradem calibrate ..., GRADEM_MPI builds) the cube tests run on
+// that job's executor (calibrate/execution/launch.hpp; MPI: rank 0 runs the calibration, ranks
+// 1..N-1 the cube tests); the answer is the same as with threads.
 // Exit status: 0 done, 1 bad input (config, lab results, ledger: the ledger is left untouched;
 // or MPI setup), 2 bad usage, 3 the calibration finished but every evaluation failed.
 #include <unistd.h>
@@ -20,12 +20,9 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
-#include "app/mpi_launch.hpp"
 #include "calibrate/calibration.hpp"
+#include "calibrate/execution/launch.hpp"
 #include "calibrate/plan.hpp"
-#ifdef GRADEM_HAVE_MPI
-#include "calibrate/mpi_executor.hpp"
-#endif
 #include "common/clock_text.hpp"
 #include "common/text_file.hpp"
 #include "reports/calibration_report.hpp"
@@ -132,22 +129,16 @@ private:
 
 int CalibrateCommand::run() {
     const CalibrateOptions& o = o_;
-#ifdef GRADEM_HAVE_MPI
-    if (cal::mpi::launched()) {
-        cal::CalibrationProblem problem;
-        return cal::mpi::run_job(
-            [&](int) {
-                problem = load_problem(o);
-                auto model = cal::make_model(problem);
-                inputs_checked();
-                return cal::mpi::JobModel{std::move(model), problem.workers};
-            },
-            [&](cal::CubeModel& model, cal::mpi::MpiExecutor& executor) { return calibrate_and_report(problem, model, executor); });
-    }
-#else
-    refuse_mpi_launch_without_mpi();
-#endif
-    const cal::CalibrationProblem problem = load_problem(o);
+    cal::CalibrationProblem problem;
+    const auto make_job = [&](int) {
+        problem = load_problem(o);
+        auto model = cal::make_model(problem);
+        inputs_checked();
+        return cal::JobModel{std::move(model), problem.workers};
+    };
+    const auto calibrate = [&](cal::CubeModel& model, cal::RunExecutor& executor) { return calibrate_and_report(problem, model, executor); };
+    if (const auto status = cal::run_on_launched_executor(make_job, calibrate)) return *status;
+    problem = load_problem(o);
     if (o.plan) return print_plan(problem);
     auto model = cal::make_model(problem);
     inputs_checked();

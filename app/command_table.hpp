@@ -27,7 +27,7 @@ inline constexpr CommandInfo kCommandTable[] = {
      "tension/macro.json", "the simulation diverged (its outputs are still written)"},
     {"calibrate", "micro-parameters from the lab targets: summary.json, summary.md, curves", "summary.json",
      "every cube test of the calibration failed (its outputs are still written)"},
-    {"study", "parameter study (gradation_effect, resolution, ...): study.json, study.md", "study.json",
+    {"study", "parameter study of a calibration (its kinds: experiments/README.md): study.json, study.md", "study.json",
      "every run of the study failed (its outputs are still written)"},
     {"report", "(re)make report.html from a command's outputs", "{\"report\": path}",
      "the report could not be made (python3 or matplotlib missing, or the generator failed)"},

@@ -19,12 +19,13 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/progress_line.hpp"
+#include "app/test_specimen.hpp"
 #include "common/clock_text.hpp"
 #include "common/text_file.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/cube_test.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/paste_cache.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
 #include "reports/cube_output.hpp"
 #include "reports/html_report.hpp"
 
@@ -92,21 +93,12 @@ void print_paste_summary(const exp::PasteReport& p, const exp::CubeTestResult& r
 
 int CompressCommand::run() {
     const Console& con = console();
-    exp::CubeConfig config = exp::load_cube_config(config_);
-    if (!out_.empty()) config.out_dir = out_;
-    if (vtk_) config.vtk = true;
-
+    exp::CubeConfig config = load_test_config(config_, out_, vtk_);
     const lab::GradationCurve curve = exp::load_gradation(config);
     inputs_checked();
-    bool cached = false;
-    if (!std::filesystem::exists(exp::packing_cache_path(config.cache_dir, exp::packing_key(curve, config.specimen))))
-        std::fprintf(con.notes(), "compress: generating the packing (genesis) ...\n");
     std::optional<exp::PasteReport> paste;  // explicit paste: the fill's report
     if (config.specimen.paste) paste.emplace();
-    const exp::Packing packing =
-        paste ? exp::load_or_generate_paste(curve, config.specimen, config.cache_dir, &cached, &*paste)
-              : exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
-    std::fprintf(con.notes(), "compress: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
+    const exp::Packing packing = load_test_packing(config, curve, "compress", paste ? &*paste : nullptr);
 
     exp::CubeTestSpec spec = config.test;
     spec.loading.strain_rate = exp::strain_rate_for(config, packing);

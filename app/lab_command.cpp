@@ -62,12 +62,12 @@ DatasetConfig options_for_files(const CommandLine& c) {
     DatasetConfig config = c.config ? load_dataset_config(*c.config, false) : DatasetConfig{};
     if (c.format) {
         const auto f = parse_format_name(*c.format);
-        if (!f) throw UsageError("--format '" + *c.format + "': expected auto, mts-testsuite, mts793, instron-bluehill or plain-csv");
+        if (!f) throw UsageError("--format '" + *c.format + "': expected " + enum_names_text<ExportFormat>(NameList::comma_or));
         config.read.format = *f;
     }
     for (const auto& [role, name] : c.columns) {
         const auto r = parse_role(role);
-        if (!r) throw UsageError("--column: unknown role '" + role + "' (time, load, crosshead, strain, lateral_strain, stress)");
+        if (!r) throw UsageError("--column: unknown role '" + role + "' (" + enum_names_text<ChannelRole>() + ")");
         config.read.channels.column[*r] = name;
     }
     for (const auto& [role, unit] : c.units) {
@@ -81,7 +81,7 @@ DatasetConfig options_for_files(const CommandLine& c) {
 // --test and its geometry options → the spec every tension export given is read with.
 TensileSpec tension_spec(const CommandLine& c) {
     const auto kind = parse_tensile_test(*c.test);
-    if (!kind) throw UsageError("--test '" + *c.test + "': expected " + kTensileTestNames);
+    if (!kind) throw UsageError("--test '" + *c.test + "': expected " + enum_names_text<TensileTestKind>(NameList::comma_or));
     TensileSpec spec;
     spec.test = *kind;
     spec.nominal_source = "command line";
@@ -89,7 +89,7 @@ TensileSpec tension_spec(const CommandLine& c) {
         const auto it = c.dimensions_mm.find(d.option);
         if (it == c.dimensions_mm.end()) continue;
         if (d.test != spec.test)
-            throw UsageError(std::string(d.option) + " applies to " + tensile_test_name(d.test) + " tests, not to --test " + *c.test);
+            throw UsageError(std::string(d.option) + " applies to " + to_string(d.test) + " tests, not to --test " + *c.test);
         if (!(it->second > 0) || !std::isfinite(it->second)) throw UsageError(std::string(d.option) + " must be > 0 (mm)");
         spec.nominal.*d.field = it->second * 1e-3;
     }
@@ -143,7 +143,7 @@ public:
         app.add_flag_function("--no-write", [this](std::int64_t) { c_.write = false; }, "write no files");
         app.add_flag("--cubes", c_.per_cube, "also print one row per cube (and per tension specimen)");
         app.add_option("--config", config_, "for export files: a TOML with [specimen], [reduction], [columns]")->type_name("FILE");
-        app.add_option("--format", format_, "for export files: auto, mts-testsuite, mts793, instron-bluehill, plain-csv")
+        app.add_option("--format", format_, "for export files: " + enum_names_text<ExportFormat>())
             ->type_name("NAME");
         app.add_option("--c144", c_.c144,
                        "for sieve analyses: ASTM C144 limits CSV to check them against "

@@ -13,7 +13,7 @@
 
 #include "app/console.hpp"
 #include "common/clock_text.hpp"
-#include "experiments/axial_loading.hpp"
+#include "experiments/virtual_tests/axial_loading.hpp"
 
 namespace gradem::app {
 

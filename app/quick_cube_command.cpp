@@ -1,6 +1,6 @@
 // `gradem quick-cube`: a bonded cube of a few thousand spheres compressed between platens to
 // past its peak, with a stress-strain summary. A smoke run of the whole engine on a quick
-// lattice packing (experiments/quick_packing.hpp); specimens of a measured gradation are
+// lattice packing (experiments/specimen/quick_packing.hpp); specimens of a measured gradation are
 // `gradem compress`'s (docs/genesis.md).
 #include <chrono>
 #include <memory>
@@ -15,8 +15,8 @@
 #include "app/commands.hpp"
 #include "common/atomic_file.hpp"
 #include "core/parallel.hpp"
-#include "experiments/platen_compression.hpp"
-#include "experiments/quick_packing.hpp"
+#include "experiments/virtual_tests/platen_compression.hpp"
+#include "experiments/specimen/quick_packing.hpp"
 
 namespace gradem::app {
 namespace {

@@ -1,4 +1,4 @@
-// `gradem report <lab|compress|calibrate|study> <folder>`: (re)makes report.html from the outputs of
+// `gradem report <kind> <folder>`: (re)makes report.html from the outputs of
 // that command in <folder> — e.g. after installing python3-matplotlib, without re-running a long
 // calibration. The commands themselves call the same writer when they finish.
 // Exit status: 0 written, 1 a missing folder or a missing/garbled output file, 2 bad usage, 3 the
@@ -19,25 +19,20 @@ namespace gradem::app {
 
 namespace {
 
-std::string kind_list() {
-    std::string out;
-    for (const std::string& k : report::report_kind_names()) out += (out.empty() ? "" : "|") + k;
-    return out;
-}
-
 class ReportCommand final : public Command {
 public:
     void declare(CLI::App& app) override {
-        std::string names;
-        for (const std::string& k : report::report_kind_names()) names += (names.empty() ? "" : ", ") + k;
-        app.add_option("kind", kind_, "which command made the folder: " + names)->required()->type_name(kind_list());
+        app.add_option("kind", kind_, "which command made the folder: " + enum_names_text<report::ReportKind>())
+            ->required()
+            ->type_name(enum_names_text<report::ReportKind>(NameList::bar));
         app.add_option("folder", folder_, "the command's output folder")->required()->type_name("folder");
     }
 
     int run() override {
         const Console& con = console();
-        const auto kind = report::parse_report_kind(kind_);
-        if (!kind) throw UsageError("report kind '" + kind_ + "': expected one of " + kind_list());
+        const auto kind = parse_enum<report::ReportKind>(kind_);
+        if (!kind)
+            throw UsageError("report kind '" + kind_ + "': expected one of " + enum_names_text<report::ReportKind>(NameList::bar));
         inputs_checked();
         const report::HtmlReportOutcome o = report::write_html_report(*kind, folder_);
         if (o.written()) {

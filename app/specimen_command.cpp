@@ -12,10 +12,10 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "common/input_error.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/genesis.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/paste_cache.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/specimen/genesis.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
 
 namespace gradem::app {
 namespace {

@@ -1,10 +1,10 @@
 // `gradem study <study.toml> [--out DIR] [--workers N]`: runs a parameter study
-// (calibrate/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
+// (calibrate/study/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
 // into its output folder, then report.html (reports/html/study_report.py). Milestones go to
 // stderr, the answer and the report path to stdout.
-// Under an MPI launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) rank 0 runs the
-// study and ranks 1..N-1 run its cube tests, as for gradem calibrate
-// (calibrate/study_models.hpp); the answer is the same as with threads.
+// Under a launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) its cube tests run on that
+// job's executor, as for gradem calibrate (calibrate/execution/launch.hpp,
+// calibrate/study/study_models.hpp); the answer is the same as with threads.
 // Exit status: 0 done, 1 bad input (study, ledger or MPI setup), 2 bad usage, 3 every run failed.
 #include <cstdio>
 #include <iostream>
@@ -14,12 +14,9 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
-#include "app/mpi_launch.hpp"
-#include "calibrate/study.hpp"
-#include "calibrate/study_models.hpp"
-#ifdef GRADEM_HAVE_MPI
-#include "calibrate/mpi_executor.hpp"
-#endif
+#include "calibrate/execution/launch.hpp"
+#include "calibrate/study/study.hpp"
+#include "calibrate/study/study_models.hpp"
 #include "common/text_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/study_report.hpp"
@@ -45,7 +42,7 @@ void say(const std::string& line) { std::fprintf(console().notes(), "study: %s\n
 int study_and_report(const cal::StudyConfig& config, const cal::StudyExecution* execution) {
     const Console& con = console();
     const cal::StudyResult result = cal::run_study(config, say, execution);
-    cal::write_study_outputs(result);
+    report::write_study_outputs(result);
     if (result.representative) std::fprintf(con.text(), "(the lab data are REPRESENTATIVE, not measurements)\n");
     for (const std::string& v : result.verdict) std::fprintf(con.text(), "%s\n", v.c_str());
     std::fprintf(con.text(), "results in %s\n", config.out_dir.c_str());
@@ -77,32 +74,25 @@ private:
 
 int StudyCommand::run() {
     const StudyOptions& o = o_;
-
-#ifdef GRADEM_HAVE_MPI
-    if (cal::mpi::launched()) {
-        // Every rank reads the study and makes the models of all its cases; the workers serve
-        // them, rank 0 prepares them once (packings into the shared cache) and runs the study.
-        cal::StudyConfig config;
-        cal::StudyModels* models = nullptr;
-        return cal::mpi::run_job(
-            [&](int) {
-                config = load_config(o);
-                auto all = std::make_unique<cal::StudyModels>(cal::study_problems(config));
-                models = all.get();
-                inputs_checked();
-                return cal::mpi::JobModel{std::move(all), config.workers};
-            },
-            [&](cal::CubeModel&, cal::mpi::MpiExecutor& executor) {
-                say("runs on " + executor.describe());
-                executor.prepare(config.seeds, say);
-                const cal::StudyExecution execution{*models, executor};
-                return study_and_report(config, &execution);
-            });
-    }
-#else
-    refuse_mpi_launch_without_mpi();
-#endif
-    const cal::StudyConfig config = load_config(o);
+    // Every process reads the study and makes the models of all its cases; on a launched
+    // executor the coordinating process prepares them once (packings into the shared cache).
+    cal::StudyConfig config;
+    cal::StudyModels* models = nullptr;
+    const auto make_job = [&](int) {
+        config = load_config(o);
+        auto all = std::make_unique<cal::StudyModels>(cal::study_problems(config));
+        models = all.get();
+        inputs_checked();
+        return cal::JobModel{std::move(all), config.workers};
+    };
+    const auto study = [&](cal::CubeModel&, cal::RunExecutor& executor) {
+        say("runs on " + executor.describe());
+        executor.prepare(config.seeds, say);
+        const cal::StudyExecution execution{*models, executor};
+        return study_and_report(config, &execution);
+    };
+    if (const auto status = cal::run_on_launched_executor(make_job, study)) return *status;
+    config = load_config(o);
     inputs_checked();
     return study_and_report(config, nullptr);
 }

@@ -21,12 +21,13 @@
 #include "app/cli.hpp"
 #include "app/commands.hpp"
 #include "app/progress_line.hpp"
+#include "app/test_specimen.hpp"
 #include "common/input_error.hpp"
 #include "common/text_file.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/tension_config.hpp"
-#include "experiments/tension_test.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/config/tension_config.hpp"
+#include "experiments/virtual_tests/tension_test.hpp"
 #include "reports/cube_output.hpp"
 #include "reports/tension_output.hpp"
 
@@ -110,9 +111,7 @@ void print_summary(const exp::TensionTestResult& t, const std::optional<exp::Rat
 
 int TensionCommand::run() {
     const Console& con = console();
-    exp::CubeConfig config = exp::load_cube_config(config_);
-    if (!out_.empty()) config.out_dir = out_;
-    if (vtk_) config.vtk = true;
+    exp::CubeConfig config = load_test_config(config_, out_, vtk_);
     const exp::TensionConfig tension = exp::load_tension_config(config);
     exp::TensionTestSpec spec = tension.spec;
     const fs::path out_dir = config.out_dir / "tension";
@@ -120,11 +119,7 @@ int TensionCommand::run() {
     const lab::GradationCurve curve = exp::load_gradation(config);
     if (!compression_.empty()) exp::check_compression_file(compression_);  // before genesis; matched to it below
     inputs_checked();
-    bool cached = false;
-    if (!fs::exists(exp::packing_cache_path(config.cache_dir, exp::packing_key(curve, config.specimen))))
-        std::fprintf(con.notes(), "tension: generating the packing (genesis) ...\n");
-    const exp::Packing packing = exp::load_or_generate(curve, config.specimen, config.cache_dir, &cached);
-    std::fprintf(con.notes(), "tension: packing of %zu grains (%s)\n", packing.radius.size(), cached ? "cached" : "generated");
+    const exp::Packing packing = load_test_packing(config, curve, "tension");
 
     std::optional<exp::CompressionReference> compression;  // --compression: matched to the packing before the long run
     if (!compression_.empty()) compression = exp::read_compression_reference(compression_, config, packing);

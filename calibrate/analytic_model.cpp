@@ -92,7 +92,7 @@ private:
             out.curve_strain.push_back(out.strain_at_peak * i / 10.0);
             out.curve_stress_pa.push_back(out.peak_pa * i / 10.0);
         }
-        out.status = RunStatus::ok;
+        out.status = OutcomeStatus::ok;
         return out;
     }
 
@@ -107,7 +107,7 @@ private:
         out.particles = 1000;
         out.steps = 1;
         if (diverge_above_ > 0.0 && estar > diverge_above_ * 1e9) {
-            out.status = RunStatus::diverged;
+            out.status = OutcomeStatus::diverged;
             out.reason = "diverged: kinetic energy blew up (analytic stand-in, E* above its limit)";
             return out;
         }
@@ -123,7 +123,7 @@ private:
             out.curve_strain.push_back(e);
             out.curve_stress_pa.push_back(out.peak_pa * x * n / (n - 1.0 + std::pow(x, n)));
         }
-        out.status = RunStatus::ok;
+        out.status = OutcomeStatus::ok;
         return out;
     }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "common/hash.hpp"
 
 namespace gradem::cal {

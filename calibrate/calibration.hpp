@@ -14,9 +14,9 @@
 #include "calibrate/cube_model.hpp"
 #include "calibrate/evaluator.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 #include "calibrate/scale_up.hpp"
-#include "calibrate/solver.hpp"
+#include "calibrate/solvers/solver.hpp"
 #include "calibrate/uncertainty.hpp"
 #include "calibrate/validation.hpp"
 

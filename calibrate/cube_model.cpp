@@ -1,30 +1,11 @@
-// What every cube model shares: run status names and the exact keys of a material.
+// What every cube model shares: the exact keys of a material.
 #include "calibrate/cube_model.hpp"
 
 #include <cstdio>
 
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
-
-const char* to_string(CubeTest t) { return t == CubeTest::tension ? "direct tension" : "compression"; }
-
-const char* to_string(RunStatus s) {
-    switch (s) {
-        case RunStatus::ok: return "ok";
-        case RunStatus::diverged: return "diverged";
-        case RunStatus::timeout: return "timeout";
-        case RunStatus::failed: return "failed";
-    }
-    return "failed";
-}
-
-RunStatus run_status_from(const std::string& t) {
-    if (t == "ok") return RunStatus::ok;
-    if (t == "diverged") return RunStatus::diverged;
-    if (t == "timeout") return RunStatus::timeout;
-    return RunStatus::failed;
-}
 
 std::string material_key(const exp::MaterialParams& m) {
     const BondParams& b = m.bond;

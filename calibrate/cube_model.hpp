@@ -12,16 +12,19 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cube_config.hpp"
-#include "experiments/cube_test.hpp"
+#include "common/named_enum.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
 
 namespace gradem::cal {
 
 /// Which virtual test a model runs: the cube compression test (what the calibration fits) or
-/// the direct-tension test of the same specimen (experiments/tension_test.hpp; its outcome's
+/// the direct-tension test of the same specimen (experiments/virtual_tests/tension_test.hpp; its outcome's
 /// peak is the tensile strength σt, its modulus the tensile chord modulus, tension positive).
 enum class CubeTest { compression, tension };
-const char* to_string(CubeTest t);
+constexpr EnumNameTable<CubeTest, 2> enum_name_table(CubeTest) {
+    return {{{CubeTest::compression, "compression"}, {CubeTest::tension, "direct tension"}}};
+}
 
 struct RunRequest {
     std::size_t sand = 0;         ///< index into the problem's sands
@@ -30,12 +33,14 @@ struct RunRequest {
     CubeTest test = CubeTest::compression;  ///< which test of the specimen (the model must run it)
 };
 
-enum class RunStatus { ok, diverged, timeout, failed };
-const char* to_string(RunStatus s);
-RunStatus run_status_from(const std::string& text);
+/// How a run ended (the ledger's `status` column).
+enum class OutcomeStatus { ok, diverged, timeout, failed };
+constexpr EnumNameTable<OutcomeStatus, 4> enum_name_table(OutcomeStatus) {
+    return {{{OutcomeStatus::ok, "ok"}, {OutcomeStatus::diverged, "diverged"}, {OutcomeStatus::timeout, "timeout"}, {OutcomeStatus::failed, "failed"}}};
+}
 
 struct RunOutcome {
-    RunStatus status = RunStatus::failed;
+    OutcomeStatus status = OutcomeStatus::failed;
     std::string reason;             ///< why not ok (divergence, timeout, reduction failure)
     double modulus_pa = 0.0;        ///< ASTM C469 chord modulus of the gauge-strain curve [Pa]
     double peak_pa = 0.0;           ///< peak stress [Pa]
@@ -44,7 +49,7 @@ struct RunOutcome {
     std::int64_t particles = 0, bonds = 0, steps = 0;
     double wall_seconds = 0.0;
     std::vector<double> curve_strain, curve_stress_pa;  ///< thinned gauge-strain curve for reports
-    [[nodiscard]] bool ok() const { return status == RunStatus::ok; }
+    [[nodiscard]] bool ok() const { return status == OutcomeStatus::ok; }
 };
 
 class CubeModel {

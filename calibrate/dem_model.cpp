@@ -12,12 +12,12 @@
 #include <stdexcept>
 #include <thread>
 
-#include "experiments/paste_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
 #include "calibrate/cube_model.hpp"
-#include "calibrate/thread_pool.hpp"
+#include "calibrate/execution/thread_pool.hpp"
 #include "common/input_error.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/tension_config.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/config/tension_config.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -117,22 +117,22 @@ public:
             out.poisson = r.macro.poisson_ratio;
             thin_curve(r, out);
             if (r.diverged()) {
-                out.status = RunStatus::diverged;
+                out.status = OutcomeStatus::diverged;
                 out.reason = r.test.stop_reason;
             } else if (tension && std::isfinite(out.peak_pa) && out.peak_pa > 0.0) {
-                out.status = RunStatus::ok;  // σt is what the tension test is run for; its modulus may be NaN
+                out.status = OutcomeStatus::ok;  // σt is what the tension test is run for; its modulus may be NaN
                 if (r.macro.status != lab::ReductionStatus::ok) out.reason = "tension curve partly reduced: " + r.macro.message;
             } else if (r.macro.status != lab::ReductionStatus::ok || !std::isfinite(out.modulus_pa)) {
-                out.status = RunStatus::failed;
+                out.status = OutcomeStatus::failed;
                 out.reason = "curve not reducible: " + r.macro.message;
             } else {
-                out.status = RunStatus::ok;
+                out.status = OutcomeStatus::ok;
             }
         } catch (const Timeout& e) {
-            out.status = RunStatus::timeout;
+            out.status = OutcomeStatus::timeout;
             out.reason = e.what();
         } catch (const std::exception& e) {
-            out.status = RunStatus::failed;
+            out.status = OutcomeStatus::failed;
             out.reason = e.what();
         }
         out.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

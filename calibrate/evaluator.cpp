@@ -8,17 +8,13 @@
 namespace gradem::cal {
 namespace {
 
-double output_of(const RunOutcome& r, Quantity q) {
-    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak || q == Quantity::tension ? r.peak_pa : r.strain_at_peak;
-}
-
 /// Seed mean and sample standard deviation of q over the runs (NaN: none, or one for the std).
 void mean_and_std(const std::vector<const RunOutcome*>& runs, Quantity q, double& mean, double& std) {
     const double n = static_cast<double>(runs.size());
     double sum = 0.0, sq = 0.0;
-    for (const RunOutcome* r : runs) sum += output_of(*r, q);
+    for (const RunOutcome* r : runs) sum += outcome_value(*r, q);
     mean = n > 0 ? sum / n : std::nan("");
-    for (const RunOutcome* r : runs) sq += (output_of(*r, q) - mean) * (output_of(*r, q) - mean);
+    for (const RunOutcome* r : runs) sq += (outcome_value(*r, q) - mean) * (outcome_value(*r, q) - mean);
     std = n > 1 ? std::sqrt(sq / (n - 1.0)) : std::nan("");
 }
 
@@ -29,6 +25,10 @@ std::vector<CubeTest> tests_of(const CalibrationProblem& problem, CubeTest prima
 }
 
 }  // namespace
+
+double outcome_value(const RunOutcome& r, Quantity q) {
+    return q == Quantity::modulus ? r.modulus_pa : q == Quantity::peak || q == Quantity::tension ? r.peak_pa : r.strain_at_peak;
+}
 
 Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& space, RunExecutor& executor, Ledger& ledger,
                      const CubeModel& model, std::function<void(const Progress&)> progress, CubeTest primary)

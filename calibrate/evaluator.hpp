@@ -14,12 +14,16 @@
 #include <vector>
 
 #include "calibrate/cube_model.hpp"
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::cal {
+
+/// A run's value of a target quantity: chord modulus [Pa], peak stress [Pa] (for a tension run
+/// the tensile strength), strain at peak [-].
+double outcome_value(const RunOutcome& r, Quantity q);
 
 /// A sand's outputs over the seeds: mean and sample standard deviation, by Quantity (the
 /// tension slot holds the tension tests' peak σt [Pa], NaN when none was run).

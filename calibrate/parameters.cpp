@@ -1,6 +1,6 @@
 #include "calibrate/parameters.hpp"
 
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 #include <algorithm>
 #include <cmath>

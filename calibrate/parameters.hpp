@@ -7,7 +7,7 @@
 // standard error in z is relative for log parameters and absolute for linear ones.
 //
 // The names, units, roles, default bounds and scales, and how a value is applied, are the
-// material table's (experiments/material_table.hpp): every row with a calibration column.
+// material table's (experiments/config/material_table.hpp): every row with a calibration column.
 // Names (and the order they are applied in): effective_modulus_gpa (E* and Ē* together),
 // stiffness_ratio (κ* and κ̄ together), friction, radius_multiplier, moment_factor,
 // friction_angle_deg, bond_gap_um, bond_gap_fraction, tensile_strength_mpa (c̄ keeps its ratio),
@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "experiments/cube_test.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 

@@ -16,12 +16,12 @@
 #include "calibrate/parameters.hpp"
 #include "common/clock_text.hpp"
 #include "core/world.hpp"
-#include "experiments/cube_specimen.hpp"
-#include "experiments/grain_sampler.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/paste_cache.hpp"
-#include "experiments/quick_packing.hpp"
-#include "experiments/tension_config.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
+#include "experiments/specimen/grain_sampler.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
+#include "experiments/specimen/quick_packing.hpp"
+#include "experiments/config/tension_config.hpp"
 
 namespace gradem::cal {
 namespace {

@@ -29,7 +29,7 @@ namespace gradem::cal {
 inline constexpr double kEndOverPeakStrain = 1.45;
 /// D = E ε_peak / σ_peak of parallel-bond cubes (1.1-1.3; the lab's mortar: 1.7-2.1) [-].
 inline constexpr double kParallelBondShapeIndex = 1.2;
-/// End of a direct-tension run over its expected peak strain (experiments/tension_config.hpp:
+/// End of a direct-tension run over its expected peak strain (experiments/config/tension_config.hpp:
 /// the measured peak is 0.62 σ̄c/Ē where the rate assumes 0.5 σ̄c/Ē, and the test runs on past it).
 inline constexpr double kTensionEndOverExpected = 1.6;
 

@@ -12,9 +12,10 @@
 #include <sstream>
 
 #include "common/input_error.hpp"
+#include "common/json_file.hpp"
 #include "common/json_number.hpp"
 #include "common/toml_section.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -55,23 +56,15 @@ std::vector<std::uint64_t> read_seeds(Section& s, const char* key, std::vector<s
 }
 
 Mode parse_mode(const std::string& text, Context& ctx) {
-    if (text == "joint") return Mode::joint;
-    if (text == "per_sand") return Mode::per_sand;
-    if (text == "study") return Mode::study;
+    if (const auto mode = parse_enum<Mode>(text)) return *mode;
     throw InputError(ctx.file, ctx.keys["calibration.mode"].line,
-                     "key 'calibration.mode' = \"" + text + "\": expected \"joint\", \"per_sand\" or \"study\"");
+                     "key 'calibration.mode' = \"" + text + "\": expected " + enum_names_text<Mode>(NameList::quoted_or));
 }
 
 Method parse_method(const std::string& text, Context& ctx) {
-    static const std::pair<const char*, Method> methods[] = {{"scaling", Method::scaling}, {"bobyqa", Method::bobyqa},
-                                                             {"sbplx", Method::sbplx},     {"cobyla", Method::cobyla},
-                                                             {"crs2", Method::crs2},       {"direct", Method::direct},
-                                                             {"ceres", Method::ceres}};
-    for (const auto& [name, m] : methods)
-        if (text == name) return m;
+    if (const auto method = parse_enum<Method>(text)) return *method;
     throw InputError(ctx.file, ctx.keys["solver.method"].line,
-                     "key 'solver.method' = \"" + text +
-                         "\": unknown solver (known: scaling, bobyqa, sbplx, cobyla, crs2, direct, ceres)");
+                     "key 'solver.method' = \"" + text + "\": unknown solver (known: " + enum_names_text<Method>() + ")");
 }
 
 // [calibration] edge_mm: the specimen edge of every run, replacing the base config's
@@ -259,10 +252,8 @@ void read_tension_target(Context& ctx, Section& s, CalibrationProblem& p) {
     s.real("tension_weight", p.weights.tension);
     s.text("tension_basis", t.basis);
     auto line = [&](const char* key) { return ctx.keys[std::string("targets.") + key].line; };
-    if (source == "none") t.source = TensionSource::none;
-    else if (source == "lab") t.source = TensionSource::lab;
-    else if (source == "assumed_ratio") t.source = TensionSource::assumed_ratio;
-    else throw InputError(ctx.file, line("tension"), "key 'targets.tension' = \"" + source + "\": expected one of none, lab, assumed_ratio");
+    if (const auto parsed = parse_enum<TensionSource>(source)) t.source = *parsed;
+    else throw InputError(ctx.file, line("tension"), "key 'targets.tension' = \"" + source + "\": expected one of " + enum_names_text<TensionSource>());
     if (!t.fitted()) return;
     if (!(t.ratio > 1.0))
         throw InputError(ctx.file, line("tension_ratio"), "key 'targets.tension_ratio' = " + show(t.ratio) + " violates > 1 (σc/σt)");
@@ -451,14 +442,7 @@ TargetStat read_stat(const nlohmann::json& sand, const char* key, double to_si, 
 
 /// The lab results file as JSON, with its 'sands' array checked.
 nlohmann::json read_lab_json(const fs::path& json_file) {
-    std::ifstream in(json_file);
-    if (!in) throw InputError(json_file.string(), 0, "cannot read the lab results");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(json_file.string(), 0, std::string("not valid JSON: ") + e.what());
-    }
+    const nlohmann::json j = common::read_json_file(json_file, "the lab results");
     if (!j.is_object() || !j.contains("sands") || !j["sands"].is_array())
         throw InputError(json_file.string(), 0, "no 'sands' array: expected the lab_results.json written by `gradem lab`");
     return j;
@@ -476,37 +460,6 @@ const nlohmann::json& find_lab_sand(const nlohmann::json& j, const fs::path& jso
 }
 
 }  // namespace
-
-const char* to_string(Mode m) {
-    return m == Mode::joint ? "joint" : m == Mode::per_sand ? "per_sand" : "study";
-}
-
-const char* to_string(Method m) {
-    switch (m) {
-        case Method::scaling: return "scaling";
-        case Method::bobyqa: return "bobyqa";
-        case Method::sbplx: return "sbplx";
-        case Method::cobyla: return "cobyla";
-        case Method::crs2: return "crs2";
-        case Method::direct: return "direct";
-        case Method::ceres: return "ceres";
-    }
-    return "?";
-}
-
-const char* to_string(Quantity q) {
-    switch (q) {
-        case Quantity::modulus: return "modulus";
-        case Quantity::peak: return "peak_stress";
-        case Quantity::strain: return "strain_at_peak";
-        case Quantity::tension: return "tensile_strength";
-    }
-    return "?";
-}
-
-const char* to_string(TensionSource s) {
-    return s == TensionSource::lab ? "lab" : s == TensionSource::assumed_ratio ? "assumed_ratio" : "none";
-}
 
 const TargetStat& target_of(const SandTargets& t, Quantity q) {
     return q == Quantity::modulus ? t.modulus : q == Quantity::peak ? t.peak : q == Quantity::strain ? t.strain : t.tension;

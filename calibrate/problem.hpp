@@ -27,14 +27,28 @@
 #include <vector>
 
 #include "calibrate/parameters.hpp"
-#include "experiments/cube_config.hpp"
+#include "common/named_enum.hpp"
+#include "experiments/config/cube_config.hpp"
 
 namespace gradem::cal {
 
+/// [calibration] mode. Names: common/named_enum.hpp (to_string, parse_enum).
 enum class Mode { joint, per_sand, study };
+constexpr EnumNameTable<Mode, 3> enum_name_table(Mode) {
+    return {{{Mode::joint, "joint"}, {Mode::per_sand, "per_sand"}, {Mode::study, "study"}}};
+}
+
+/// [solver] method (calibrate/solvers/solver.cpp dispatches on it).
 enum class Method { scaling, bobyqa, sbplx, cobyla, crs2, direct, ceres };
-const char* to_string(Mode m);
-const char* to_string(Method m);
+constexpr EnumNameTable<Method, 7> enum_name_table(Method) {
+    return {{{Method::scaling, "scaling"},
+             {Method::bobyqa, "bobyqa"},
+             {Method::sbplx, "sbplx"},
+             {Method::cobyla, "cobyla"},
+             {Method::crs2, "crs2"},
+             {Method::direct, "direct"},
+             {Method::ceres, "ceres"}}};
+}
 
 /// Mean and standard deviation of one lab quantity over a sand's cubes (SI).
 struct TargetStat {
@@ -53,12 +67,20 @@ struct SandTargets {
 enum class Quantity { modulus, peak, strain, tension };
 inline constexpr Quantity kQuantities[] = {Quantity::modulus, Quantity::peak, Quantity::strain};
 inline constexpr int kQuantityCount = 4;  ///< slots of per-quantity arrays (the tension one may stay empty)
-const char* to_string(Quantity q);
+/// The quantity's key in summary.json, study.json and the ledger.
+constexpr EnumNameTable<Quantity, 4> enum_name_table(Quantity) {
+    return {{{Quantity::modulus, "modulus"},
+             {Quantity::peak, "peak_stress"},
+             {Quantity::strain, "strain_at_peak"},
+             {Quantity::tension, "tensile_strength"}}};
+}
 const TargetStat& target_of(const SandTargets& t, Quantity q);
 
 /// Where the direct-tension target comes from ([targets] tension).
 enum class TensionSource { none, lab, assumed_ratio };
-const char* to_string(TensionSource s);
+constexpr EnumNameTable<TensionSource, 3> enum_name_table(TensionSource) {
+    return {{{TensionSource::none, "none"}, {TensionSource::lab, "lab"}, {TensionSource::assumed_ratio, "assumed_ratio"}}};
+}
 
 /// The direct-tension target: the lab's strength (lab_results.json `tensile_strength_mpa`,
 /// splitting or flexural tests converted to direct tension by `gradem lab`), or σt = σc,lab / ratio

@@ -4,7 +4,7 @@
 // at peak scatters more in the lab (its coefficient
 // of variation is about twice the peak's) and is the quantity the bond models' shape sets.
 // The direct-tension strength, when fitted, is met by its own rule (tension_met).
-// The one place the calibration summary (md, json, html) and the model_form study read them.
+// The one place the calibration summary (md, json, html) and the studies read them.
 #include <cmath>
 
 #include "calibrate/problem.hpp"

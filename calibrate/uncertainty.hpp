@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "calibrate/solver.hpp"
+#include "calibrate/solvers/solver.hpp"
 
 namespace gradem::cal {
 

@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "calibrate/parameters.hpp"
-#include "calibrate/study_models.hpp"
+#include "calibrate/study/study_models.hpp"
 
 namespace gradem::cal {
 

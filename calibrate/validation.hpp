@@ -17,9 +17,9 @@
 
 #include "calibrate/cube_model.hpp"
 #include "calibrate/evaluator.hpp"
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/run_executor.hpp"
+#include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::cal {
 

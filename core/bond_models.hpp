@@ -5,7 +5,7 @@
 // the BondModel enumerator, the name configs, reports and the ledger use, and the macro.json
 // group of the law's parameters. Everything else derives from this list: the BondModel enum
 // and its names, the parameters BondParams holds (BondLawParams), the validator, the material
-// table (experiments/material_table.cpp), the MPI wire format (calibrate/run_message.cpp) and the
+// table (experiments/config/material_table.cpp), the MPI wire format (calibrate/execution/run_message.cpp) and the
 // analytic stand-in (calibrate/analytic_model.cpp).
 // The World calls visit_bond_law once per phase, so each law's loop is compiled with its kernel
 // inlined (no per-bond dispatch in the hot loop).
@@ -17,6 +17,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "common/named_enum.hpp"
 #include "core/flat_joint_law.hpp"
 #include "core/parallel_bond_law.hpp"
 #include "core/soft_bond_law.hpp"
@@ -71,6 +72,13 @@ inline constexpr std::size_t kBondLawCount = std::tuple_size_v<BondLaws>;
 /// The model names, in BondModel order ("parallel_bond", ...).
 inline constexpr std::array<const char*, kBondLawCount> kBondModelNames = {GRADEM_BOND_LAWS(GRADEM_BOND_LAW_NAME)};
 #undef GRADEM_BOND_LAW_NAME
+
+#define GRADEM_BOND_LAW_NAME_ROW(name, Law) EnumName<BondModel>{BondModel::name, #name},
+/// BondModel <-> name (common/named_enum.hpp: to_string, parse_enum<BondModel>, enum_names).
+constexpr EnumNameTable<BondModel, kBondLawCount> enum_name_table(BondModel) {
+    return {{GRADEM_BOND_LAWS(GRADEM_BOND_LAW_NAME_ROW)}};
+}
+#undef GRADEM_BOND_LAW_NAME_ROW
 
 /// Every law's own parameter struct, in BondModel order (what BondParams::laws holds).
 using BondLawParams = bond_registry_detail::params_of<BondLaws>::type;

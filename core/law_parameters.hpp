@@ -2,8 +2,8 @@
 // The parameter rows of a bond law: each law's header lists its own parameters once, as
 // constexpr rows over its parameter struct (Law::kParameters), and core/bond_models.hpp lists the
 // laws. From these rows come the core validator (BondParams::invalid_reason), the material table
-// (experiments/material_table.cpp: config keys, units, macro.json, calibration), the MPI wire
-// format (calibrate/run_message.cpp) and the benchmark's descriptive columns. Config and IO paths
+// (experiments/config/material_table.cpp: config keys, units, macro.json, calibration), the MPI wire
+// format (calibrate/execution/run_message.cpp) and the benchmark's descriptive columns. Config and IO paths
 // only: nothing here runs per bond.
 #include <cmath>
 #include <cstdint>

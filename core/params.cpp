@@ -33,16 +33,9 @@ std::optional<std::string> law_rows_invalid_reason(const typename Law::Params& o
 
 }  // namespace
 
-const char* bond_model_name(BondModel model) {
-    const auto k = static_cast<std::size_t>(model);
-    return k < kBondModelNames.size() ? kBondModelNames[k] : "unknown";
-}
+const char* bond_model_name(BondModel model) { return to_string(model); }
 
-std::optional<BondModel> parse_bond_model(const std::string& name) {
-    for (std::size_t k = 0; k < kBondModelNames.size(); ++k)
-        if (name == kBondModelNames[k]) return static_cast<BondModel>(k);
-    return std::nullopt;
-}
+std::optional<BondModel> parse_bond_model(const std::string& name) { return parse_enum<BondModel>(name); }
 
 std::optional<std::string> ContactParams::invalid_reason() const {
     if (!positive(effective_modulus))

@@ -22,9 +22,10 @@ struct ContactParams {
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 
-/// The BondModel's name (the names configs and reports use: core/bond_models.hpp's rows).
+/// The BondModel's name (the names configs and reports use: core/bond_models.hpp's rows);
+/// to_string(model) of common/named_enum.hpp.
 const char* bond_model_name(BondModel model);
-/// The model of that name, or nullopt for an unknown name.
+/// The model of that name, or nullopt for an unknown name (parse_enum<BondModel>).
 std::optional<BondModel> parse_bond_model(const std::string& name);
 
 /// Bond parameters (Potyondy & Cundall 2004; PFC linearpbond) shared by every bond model. Bond stiffness per unit area

@@ -13,7 +13,7 @@ struct RoleRule {
     std::vector<std::string> exact;    // whole normalised name
     std::vector<std::string> words;    // token (<= 3 chars: equal; longer: contained)
     std::vector<std::string> exclude;  // substrings that disqualify
-    std::vector<Quantity> quantities;  // acceptable unit quantities
+    std::vector<Dimension> quantities;  // acceptable unit quantities
 };
 
 const std::vector<RoleRule>& rules() {
@@ -21,21 +21,21 @@ const std::vector<RoleRule>& rules() {
     auto with_command = [&](std::vector<std::string> v) { v.insert(v.end(), kCommand.begin(), kCommand.end()); return v; };
     static const std::vector<RoleRule> kRules = {
         {ChannelRole::load, {"load", "force", "axial force", "axial load", "kraft", "compressive load", "compressive force"},
-         {"force", "load", "kraft"}, with_command({"max", "peak", "stress"}), {Quantity::force}},
+         {"force", "load", "kraft"}, with_command({"max", "peak", "stress"}), {Dimension::force}},
         {ChannelRole::stress, {"stress", "axial stress", "compressive stress", "spannung"},
-         {"stress", "spannung"}, with_command({"max", "peak"}), {Quantity::stress}},
+         {"stress", "spannung"}, with_command({"max", "peak"}), {Dimension::stress}},
         {ChannelRole::time, {"time", "running time", "elapsed time", "test time", "total time", "laufzeit", "zeit", "t"},
-         {"time", "zeit"}, with_command({"tages", "of day", "date", "datum", "cycle", "segment"}), {Quantity::time}},
+         {"time", "zeit"}, with_command({"tages", "of day", "date", "datum", "cycle", "segment"}), {Dimension::time}},
         {ChannelRole::lateral_strain, {"lateral strain", "transverse strain", "querdehnung"},
-         {"lateral", "transverse", "querdehnung", "radial"}, with_command({}), {Quantity::strain, Quantity::length}},
+         {"lateral", "transverse", "querdehnung", "radial"}, with_command({}), {Dimension::strain, Dimension::length}},
         {ChannelRole::strain, {"strain", "axial strain", "strain 1", "axial ext", "ext", "extensometer", "dehnung", "e"},
          {"strain", "dehnung", "extensometer", "ext", "epsilon"},
          with_command({"lateral", "transverse", "quer", "radial", "extension", "crosshead", "displacement", "stress"}),
-         {Quantity::strain, Quantity::length}},
+         {Dimension::strain, Dimension::length}},
         {ChannelRole::crosshead, {"crosshead", "extension", "displacement", "axial displacement", "position", "axial position",
                                   "stroke", "weg", "actuator", "deflection"},
          {"crosshead", "displacement", "extension", "position", "stroke", "weg", "actuator", "deflection", "travel"},
-         with_command({"extensometer", "strain", "lateral"}), {Quantity::length}},
+         with_command({"extensometer", "strain", "lateral"}), {Dimension::length}},
     };
     return kRules;
 }
@@ -60,8 +60,8 @@ bool unit_compatible(const RawColumn& col, const RoleRule& rule, const ChannelOv
     if (!spelling.empty() && spelling.front() == '!') spelling.erase(0, 1);  // a forced override
     const auto unit = parse_unit(spelling);
     if (!unit) return true;
-    for (Quantity q : rule.quantities)
-        if (unit->quantity == q) return true;
+    for (Dimension q : rule.quantities)
+        if (unit->dimension == q) return true;
     return false;
 }
 
@@ -80,9 +80,9 @@ bool name_matches(const std::string& name, const RoleRule& rule, bool exact) {
 
 std::string describe(const RawColumn& c) { return c.unit.empty() ? c.name : c.name + " [" + c.unit + "]"; }
 
-std::optional<Quantity> unit_quantity(const RawColumn& c) {
+std::optional<Dimension> unit_quantity(const RawColumn& c) {
     const auto u = parse_unit(c.unit);
-    return u ? std::optional<Quantity>(u->quantity) : std::nullopt;
+    return u ? std::optional<Dimension>(u->dimension) : std::nullopt;
 }
 
 }  // namespace
@@ -123,7 +123,7 @@ RoleAssignment assign_roles(const RawTable& t, const ChannelOverrides& overrides
         if (!found) {
             std::string names;
             for (const auto& col : t.columns) names += (names.empty() ? "" : ", ") + describe(col);
-            throw InputError(t.file, header_line, "column '" + wanted + "' (configured as the " + role_name(role) +
+            throw InputError(t.file, header_line, "column '" + wanted + "' (configured as the " + to_string(role) +
                                                       " column) is not in the file; columns are: " + names);
         }
     }
@@ -139,8 +139,8 @@ RoleAssignment assign_roles(const RawTable& t, const ChannelOverrides& overrides
             a.column[rule.role] = hits.front();
             claimed[hits.front()] = true;
             if (hits.size() > 1)
-                a.notes.push_back(std::string("several columns could be ") + role_name(rule.role) + "; using '" +
-                                  t.columns[hits.front()].name + "' (set [columns] " + role_name(rule.role) + " to choose)");
+                a.notes.push_back(std::string("several columns could be ") + to_string(rule.role) + "; using '" +
+                                  t.columns[hits.front()].name + "' (set [columns] " + to_string(rule.role) + " to choose)");
         }
     }
     for (const auto& rule : rules()) {  // 3. units alone, when exactly one free column fits
@@ -151,7 +151,7 @@ RoleAssignment assign_roles(const RawTable& t, const ChannelOverrides& overrides
         if (hits.size() != 1) continue;
         a.column[rule.role] = hits.front();
         claimed[hits.front()] = true;
-        a.notes.push_back(std::string("column '") + t.columns[hits.front()].name + "' taken as " + role_name(rule.role) +
+        a.notes.push_back(std::string("column '") + t.columns[hits.front()].name + "' taken as " + to_string(rule.role) +
                           " from its unit");
     }
     return a;

@@ -187,15 +187,6 @@ std::optional<std::string> ReductionOptions::invalid_reason() const {
     return std::nullopt;
 }
 
-const char* status_name(ReductionStatus s) {
-    switch (s) {
-        case ReductionStatus::ok: return "ok";
-        case ReductionStatus::modulus_window_not_reached: return "modulus_window_not_reached";
-        case ReductionStatus::invalid_curve: return "invalid_curve";
-    }
-    return "?";
-}
-
 CurveReduction reduce_curve(const StressStrainCurve& c, const ReductionOptions& o) {
     CurveReduction r;
     r.chord_modulus_pa = r.tangent_modulus_pa = r.poisson_ratio = r.strain_at_peak_crosshead = kNaN;

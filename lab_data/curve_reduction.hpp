@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "common/named_enum.hpp"
+
 namespace gradem::lab {
 
 /// A compression curve. `strain` and `stress_pa` are required and of equal length; the other
@@ -53,7 +55,11 @@ enum class ReductionStatus {
     modulus_window_not_reached,  ///< the curve never spans ε1 .. S2 on its ascending branch
     invalid_curve,               ///< too few samples, non-finite values, or no compressive stress
 };
-const char* status_name(ReductionStatus s);
+constexpr EnumNameTable<ReductionStatus, 3> enum_name_table(ReductionStatus) {
+    return {{{ReductionStatus::ok, "ok"},
+             {ReductionStatus::modulus_window_not_reached, "modulus_window_not_reached"},
+             {ReductionStatus::invalid_curve, "invalid_curve"}}};
+}
 
 struct PopovicsFit {
     bool converged = false;

@@ -86,7 +86,7 @@ void read_dataset_section(const toml::table& root, DatasetConfig& c, const std::
         const std::string format = get_string(*d, "export_format", file, "auto");
         const auto f = parse_format_name(format);
         if (!f) throw InputError(file, line_of(*d->get("export_format")), "export_format '" + format +
-                                                                        "': expected auto, mts-testsuite, mts793, instron-bluehill or plain-csv");
+                                                                        "': expected " + enum_names_text<ExportFormat>(NameList::comma_or));
         c.read.format = *f;
     }
     if (const auto* s = sub_table(root, "specimen", file)) {
@@ -176,7 +176,7 @@ TensionBatchSpec read_tension(const toml::table& t, const DatasetConfig& c, cons
     if (!test) throw InputError(file, spec.config_line, spec.label + " needs test = \"splitting\" or \"flexural\"");
     const std::string name = get_string(t, "test", file);
     const auto kind = parse_tensile_test(name);
-    if (!kind) throw InputError(file, line_of(*test), "key 'test': '" + name + "' is not a tensile test (expected " + kTensileTestNames + ")");
+    if (!kind) throw InputError(file, line_of(*test), "key 'test': '" + name + "' is not a tensile test (expected " + enum_names_text<TensileTestKind>(NameList::comma_or) + ")");
     spec.test = *kind;
     // A dimension of the other kind of test is a mistake, not something to ignore.
     const std::vector<std::string> splitting_keys{"diameter_mm", "length_mm"}, flexural_keys{"width_mm", "depth_mm", "span_mm"};
@@ -186,7 +186,7 @@ TensionBatchSpec read_tension(const toml::table& t, const DatasetConfig& c, cons
     for (const auto& k : own) own_list += (own_list.empty() ? "" : ", ") + k;
     for (const auto& key : splitting ? flexural_keys : splitting_keys)
         if (const toml::node* n = t.get(key))
-            throw InputError(file, line_of(*n), "key '" + key + "' does not apply to a " + tensile_test_name(spec.test) + " test (its keys: " +
+            throw InputError(file, line_of(*n), "key '" + key + "' does not apply to a " + to_string(spec.test) + " test (its keys: " +
                                                     own_list + ")");
     TensileGeometry& g = spec.nominal;  // 0: not given (the export's, or for prisms ASTM C348's, is used)
     g.diameter_m = get_number(t, "diameter_mm", file, 0.0) * 1e-3;

@@ -15,16 +15,16 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-Quantity role_quantity(ChannelRole role) {
+Dimension role_quantity(ChannelRole role) {
     switch (role) {
-        case ChannelRole::time: return Quantity::time;
-        case ChannelRole::load: return Quantity::force;
-        case ChannelRole::crosshead: return Quantity::length;
+        case ChannelRole::time: return Dimension::time;
+        case ChannelRole::load: return Dimension::force;
+        case ChannelRole::crosshead: return Dimension::length;
         case ChannelRole::strain:
-        case ChannelRole::lateral_strain: return Quantity::strain;
-        case ChannelRole::stress: return Quantity::stress;
+        case ChannelRole::lateral_strain: return Dimension::strain;
+        case ChannelRole::stress: return Dimension::stress;
     }
-    return Quantity::force;
+    return Dimension::force;
 }
 
 // The unit of a role column, from the override or the file; InputError when missing/unknown,
@@ -38,21 +38,21 @@ Unit column_unit(const RawTable& t, const RawColumn& col, ChannelRole role, cons
         const auto header = parse_unit(col.unit), given = parse_unit(spelling);
         if (header && given && header->to_si != given->to_si)
             throw InputError(t.file, col.header_line,
-                             column_prefix(col.name) + "the unit override '" + spelling + "' for " + role_name(role) +
+                             column_prefix(col.name) + "the unit override '" + spelling + "' for " + to_string(role) +
                                  " contradicts the header's unit '" + col.unit + "'; drop the override, or force it with '!" +
-                                 spelling + "' (--unit " + role_name(role) + "=!" + spelling + ", or [columns] " + role_name(role) +
+                                 spelling + "' (--unit " + to_string(role) + "=!" + spelling + ", or [columns] " + to_string(role) +
                                  "_unit = \"!" + spelling + "\")");
     }
-    const Quantity want = role_quantity(role);
-    const std::string hint = std::string("expected a ") + quantity_name(want) + " unit (" + accepted_units(want) +
-                             "); set [columns] " + role_name(role) + "_unit in the config if the file does not say";
+    const Dimension want = role_quantity(role);
+    const std::string hint = std::string("expected a ") + to_string(want) + " unit (" + accepted_units(want) +
+                             "); set [columns] " + to_string(role) + "_unit in the config if the file does not say";
     if (trim(spelling).empty()) throw InputError(t.file, col.header_line, column_prefix(col.name) + "no unit given; " + hint);
     const auto unit = parse_unit(spelling);
     if (!unit) throw InputError(t.file, col.header_line, column_prefix(col.name) + "unit '" + spelling + "' is unknown; " + hint);
-    const bool extensometer_length = (role == ChannelRole::strain || role == ChannelRole::lateral_strain) && unit->quantity == Quantity::length;
-    if (unit->quantity != want && !extensometer_length)
+    const bool extensometer_length = (role == ChannelRole::strain || role == ChannelRole::lateral_strain) && unit->dimension == Dimension::length;
+    if (unit->dimension != want && !extensometer_length)
         throw InputError(t.file, col.header_line, column_prefix(col.name) + "unit '" + spelling + "' is a " +
-                                                      quantity_name(unit->quantity) + " unit; " + hint);
+                                                      to_string(unit->dimension) + " unit; " + hint);
     return *unit;
 }
 
@@ -65,7 +65,7 @@ std::vector<double> column_values(const RawTable& t, const RawColumn& col, const
         const auto x = parse_number(cell.text, t.dialect, cell.quoted);
         if (!x)
             throw InputError(t.file, t.row_line[r], column_prefix(col.name) + "'" + trim(cell.text) +
-                                                        "' is not a number (expected " + quantity_name(unit.quantity) +
+                                                        "' is not a number (expected " + to_string(unit.dimension) +
                                                         " in " + unit.symbol + ", decimal separator '" + t.dialect.decimal + "')");
         v[r] = *x * unit.to_si;
     }
@@ -73,7 +73,7 @@ std::vector<double> column_values(const RawTable& t, const RawColumn& col, const
 }
 
 // A length from metadata ("50.21 mm", or value + unit cell); nullopt when the value is not a number.
-std::optional<double> meta_length(const RawTable& t, const MetaEntry& m, Quantity q, std::vector<std::string>& notes) {
+std::optional<double> meta_length(const RawTable& t, const MetaEntry& m, Dimension q, std::vector<std::string>& notes) {
     std::string value = trim(m.value), unit = trim(m.unit);
     if (const auto sp = value.find(' '); sp != std::string::npos && unit.empty()) {
         unit = trim(std::string_view(value).substr(sp + 1));
@@ -82,12 +82,12 @@ std::optional<double> meta_length(const RawTable& t, const MetaEntry& m, Quantit
     const auto x = parse_number(value, t.dialect, true);
     if (!x) return std::nullopt;
     if (unit.empty()) {
-        notes.push_back("metadata '" + m.key + "' has no unit: taken as " + (q == Quantity::area ? "mm²" : "mm"));
-        return *x * (q == Quantity::area ? 1e-6 : 1e-3);
+        notes.push_back("metadata '" + m.key + "' has no unit: taken as " + (q == Dimension::area ? "mm²" : "mm"));
+        return *x * (q == Dimension::area ? 1e-6 : 1e-3);
     }
     const auto u = parse_unit(unit);
-    if (!u || u->quantity != q)
-        throw InputError(t.file, m.line, "metadata '" + m.key + "': unit '" + unit + "' is not a " + quantity_name(q) +
+    if (!u || u->dimension != q)
+        throw InputError(t.file, m.line, "metadata '" + m.key + "': unit '" + unit + "' is not a " + to_string(q) +
                                              " unit (expected " + accepted_units(q) + ")");
     return *x * u->to_si;
 }
@@ -105,19 +105,19 @@ SpecimenGeometry geometry_from(const RawTable& t, const ReadOptions& o, LoadFram
     SpecimenGeometry g = o.nominal;
     if (!o.use_file_geometry) return g;
     bool from_file = false;
-    auto take = [&](std::initializer_list<const char*> keys, std::initializer_list<const char*> not_keys, double& field, Quantity q) {
+    auto take = [&](std::initializer_list<const char*> keys, std::initializer_list<const char*> not_keys, double& field, Dimension q) {
         const auto v = metadata_dimension(t, keys, not_keys, q, test.notes);
         if (v) { field = *v; from_file = true; }
         return v.has_value();
     };
-    const bool width = take({"width", "breite"}, {"rate"}, g.width_m, Quantity::length);
-    const bool depth = take({"depth", "thickness", "tiefe", "dicke", "länge", "length"}, {"gauge", "gage", "mess", "extensometer", "rate"}, g.depth_m, Quantity::length);
-    const bool height = take({"height", "höhe"}, {"rate"}, g.height_m, Quantity::length);
-    take({"gauge length", "gage length", "messlänge", "extensometer length"}, {}, g.gauge_length_m, Quantity::length);
+    const bool width = take({"width", "breite"}, {"rate"}, g.width_m, Dimension::length);
+    const bool depth = take({"depth", "thickness", "tiefe", "dicke", "länge", "length"}, {"gauge", "gage", "mess", "extensometer", "rate"}, g.depth_m, Dimension::length);
+    const bool height = take({"height", "höhe"}, {"rate"}, g.height_m, Dimension::length);
+    take({"gauge length", "gage length", "messlänge", "extensometer length"}, {}, g.gauge_length_m, Dimension::length);
     double diameter = 0;
-    const bool round = take({"diameter", "durchmesser"}, {}, diameter, Quantity::length);
+    const bool round = take({"diameter", "durchmesser"}, {}, diameter, Dimension::length);
     if (diameter > 0) g.area_m2 = std::numbers::pi * diameter * diameter / 4;
-    const bool area = take({"area", "fläche", "querschnitt"}, {}, g.area_m2, Quantity::area) || round;
+    const bool area = take({"area", "fläche", "querschnitt"}, {}, g.area_m2, Dimension::area) || round;
     if (from_file) g.source = "file";
     if (!area) {  // a stated area (or diameter) makes width and depth irrelevant
         if (!width) test.nominal_dimensions.push_back(nominal_dimension(o, "width", g.width_m));
@@ -166,26 +166,10 @@ void drop_incomplete_rows(LoadFrameTest& test) {
 
 }  // namespace
 
-const char* role_name(ChannelRole role) {
-    switch (role) {
-        case ChannelRole::time: return "time";
-        case ChannelRole::load: return "load";
-        case ChannelRole::crosshead: return "crosshead";
-        case ChannelRole::strain: return "strain";
-        case ChannelRole::lateral_strain: return "lateral_strain";
-        case ChannelRole::stress: return "stress";
-    }
-    return "?";
-}
-
-std::optional<ChannelRole> parse_role(std::string_view name) {
-    for (ChannelRole r : kAllRoles)
-        if (to_lower(trim(name)) == role_name(r)) return r;
-    return std::nullopt;
-}
+std::optional<ChannelRole> parse_role(std::string_view name) { return parse_enum<ChannelRole>(to_lower(trim(name))); }
 
 std::optional<double> metadata_dimension(const RawTable& t, std::initializer_list<const char*> keys,
-                                         std::initializer_list<const char*> not_keys, Quantity q, std::vector<std::string>& notes) {
+                                         std::initializer_list<const char*> not_keys, Dimension q, std::vector<std::string>& notes) {
     for (const auto& m : t.metadata) {
         const std::string k = to_lower(m.key);
         bool excluded = false;
@@ -238,9 +222,9 @@ LoadFrameTest interpret_export(const RawTable& t, const ReadOptions& o) {
         const RawColumn& col = t.columns[index];
         const Unit unit = column_unit(t, col, role, o.channels);
         v[role] = column_values(t, col, unit);
-        test.columns[role_name(role)] = col.name + " [" + unit.symbol + "]";
+        test.columns[to_string(role)] = col.name + " [" + unit.symbol + "]";
         const bool is_strain = role == ChannelRole::strain || role == ChannelRole::lateral_strain;
-        if (is_strain && unit.quantity == Quantity::length) {  // extensometer reports its elongation
+        if (is_strain && unit.dimension == Dimension::length) {  // extensometer reports its elongation
             if (!(test.geometry.gauge_length_m > 0))
                 throw InputError(t.file, col.header_line, column_prefix(col.name) + "extensometer reports a length (" + unit.symbol +
                                                               ") but no gauge length is known; set [specimen] gauge_length_mm");

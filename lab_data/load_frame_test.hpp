@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/named_enum.hpp"
 #include "lab_data/curve_reduction.hpp"
 #include "lab_data/export_readers.hpp"
 #include "lab_data/lab_warning.hpp"
@@ -20,8 +21,16 @@ namespace gradem::lab {
 enum class ChannelRole { time, load, crosshead, strain, lateral_strain, stress };
 inline constexpr ChannelRole kAllRoles[] = {ChannelRole::time, ChannelRole::load, ChannelRole::crosshead,
                                             ChannelRole::strain, ChannelRole::lateral_strain, ChannelRole::stress};
-/// "time", "load", "crosshead", "strain", "lateral_strain", "stress" (also the config keys).
-const char* role_name(ChannelRole role);
+/// The roles' names (also the [columns] keys and --column/--unit roles).
+constexpr EnumNameTable<ChannelRole, 6> enum_name_table(ChannelRole) {
+    return {{{ChannelRole::time, "time"},
+             {ChannelRole::load, "load"},
+             {ChannelRole::crosshead, "crosshead"},
+             {ChannelRole::strain, "strain"},
+             {ChannelRole::lateral_strain, "lateral_strain"},
+             {ChannelRole::stress, "stress"}}};
+}
+/// parse_enum<ChannelRole> ignoring case and outer spaces.
 std::optional<ChannelRole> parse_role(std::string_view name);
 
 /// User overrides of the inferred column roles ([columns] in the dataset config).
@@ -89,7 +98,7 @@ LoadFrameTest read_load_frame_bytes(std::string_view bytes, const std::string& f
 /// unit cell; without a unit mm or mm², noted in `notes`). nullopt when there is no such entry or
 /// its value is not a positive number; InputError (file:line) when its unit is of another quantity.
 std::optional<double> metadata_dimension(const RawTable& table, std::initializer_list<const char*> keys,
-                                         std::initializer_list<const char*> not_keys, Quantity q, std::vector<std::string>& notes);
+                                         std::initializer_list<const char*> not_keys, Dimension q, std::vector<std::string>& notes);
 
 /// Stress = load / loaded area (ASTM C109 §11); strain = extensometer (or, without one,
 /// crosshead displacement / height); crosshead strain reported separately.

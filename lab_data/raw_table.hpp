@@ -28,7 +28,7 @@ struct RawColumn {
 
 struct RawTable {
     std::string file;
-    std::string format;    ///< "mts-testsuite", "mts793", "instron-bluehill", "plain-csv"
+    std::string format;    ///< the format's name (export_readers.hpp, GRADEM_EXPORT_FORMATS)
     std::string encoding;  ///< from decode_text()
     Dialect dialect;
     std::vector<MetaEntry> metadata;

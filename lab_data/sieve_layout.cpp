@@ -100,7 +100,7 @@ std::optional<SieveUnit> read_sieve_unit(std::string_view text) {
     if (s == "%" || s == "pct" || s == "percent") return SieveUnit{SieveUnit::percent, 1.0};
     for (const auto& m : kMassUnits)
         if (s == m.spelling) return SieveUnit{SieveUnit::mass, m.grams};
-    if (const auto u = parse_unit(s); u && u->quantity == Quantity::length) return SieveUnit{SieveUnit::length, u->to_si};
+    if (const auto u = parse_unit(s); u && u->dimension == Dimension::length) return SieveUnit{SieveUnit::length, u->to_si};
     return std::nullopt;
 }
 
@@ -327,7 +327,7 @@ std::optional<SieveDesignation> parse_size(const std::string& s, const Dialect& 
     if (is_inch_unit(unit)) return inch_sieve(*value);
     if (!unit.empty()) {
         const auto u = parse_unit(unit);
-        if (!u || u->quantity != Quantity::length) return std::nullopt;
+        if (!u || u->dimension != Dimension::length) return std::nullopt;
         return sieve_at(*value * u->to_si);
     }
     if (bare.us_sieve) return us_sieve(*value);

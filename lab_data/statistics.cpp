@@ -84,18 +84,22 @@ double student_t_two_sided_p(double t, double dof) {
 }
 
 WelchTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b) {
-    const SampleSummary s1 = summarize(a), s2 = summarize(b);
+    return welch_t_test_of_summaries(summarize(a), summarize(b));
+}
+
+WelchTest welch_t_test_of_summaries(const SampleSummary& s1, const SampleSummary& s2) {
     WelchTest w;
     w.n1 = s1.n;
     w.n2 = s2.n;
     w.mean_difference = s1.mean - s2.mean;
-    w.t = w.dof = w.p_value = w.cohens_d = w.hedges_g = kNaN;
+    w.std_error = w.t = w.dof = w.p_value = w.cohens_d = w.hedges_g = kNaN;
     if (s1.n < 2 || s2.n < 2) return w;
     const double n1 = static_cast<double>(s1.n), n2 = static_cast<double>(s2.n);
     const double v1 = s1.std * s1.std / n1, v2 = s2.std * s2.std / n2;
+    w.std_error = std::sqrt(v1 + v2);
     if (!(v1 + v2 > 0)) return w;
-    w.t = w.mean_difference / std::sqrt(v1 + v2);
     w.dof = (v1 + v2) * (v1 + v2) / (v1 * v1 / (n1 - 1) + v2 * v2 / (n2 - 1));
+    w.t = w.mean_difference / w.std_error;
     w.p_value = student_t_two_sided_p(w.t, w.dof);
     const double pooled = std::sqrt(((n1 - 1) * s1.std * s1.std + (n2 - 1) * s2.std * s2.std) / (n1 + n2 - 2));
     w.cohens_d = w.mean_difference / pooled;

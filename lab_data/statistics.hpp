@@ -28,7 +28,8 @@ double student_t_two_sided_p(double t, double dof);
 struct WelchTest {
     std::size_t n1 = 0, n2 = 0;
     double mean_difference = 0;  ///< mean(a) − mean(b)
-    double t = 0;                ///< (m1 − m2) / sqrt(s1²/n1 + s2²/n2)
+    double std_error = 0;        ///< sqrt(s1²/n1 + s2²/n2), of the difference
+    double t = 0;                ///< (m1 − m2) / std_error
     double dof = 0;              ///< Welch–Satterthwaite degrees of freedom
     double p_value = 0;          ///< two-sided
     double cohens_d = 0;         ///< difference / pooled standard deviation
@@ -37,6 +38,8 @@ struct WelchTest {
 
 /// Needs at least 2 finite values in each sample with some spread; otherwise t, p, d are NaN.
 WelchTest welch_t_test(const std::vector<double>& a, const std::vector<double>& b);
+/// The same from the samples' summaries (n, mean, std), e.g. lab statistics without the values.
+WelchTest welch_t_test_of_summaries(const SampleSummary& a, const SampleSummary& b);
 
 /// ASTM C109/C109M (faulty specimens and retests) [check clause numbers]: the maximum
 /// permissible range between specimens from the same batch tested at the same age is 8.7 %

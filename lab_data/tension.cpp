@@ -16,7 +16,7 @@ namespace {
 
 // One dimension of the specimen: its metadata keys, the dataset key and command-line option
 // that give it, and where it lives in TensileGeometry.
-struct Dimension {
+struct SpecimenDimension {
     const char* what;
     std::initializer_list<const char*> keys, not_keys;
     const char* config_key;
@@ -25,11 +25,11 @@ struct Dimension {
     double standard;  ///< ASTM C348 default [m], 0: none
 };
 
-const Dimension kSplitting[] = {
+const SpecimenDimension kSplitting[] = {
     {"diameter", {"diameter", "durchmesser"}, {}, "diameter_mm", "--diameter-mm", &TensileGeometry::diameter_m, 0},
     {"length", {"length", "länge"}, {"gauge", "gage", "mess", "extensometer", "rate", "span"}, "length_mm", "--length-mm",
      &TensileGeometry::length_m, 0}};
-const Dimension kFlexural[] = {
+const SpecimenDimension kFlexural[] = {
     {"width", {"width", "breite"}, {"rate"}, "width_mm", "--width-mm", &TensileGeometry::width_m, kC348PrismWidth},
     {"depth", {"depth", "thickness", "tiefe", "dicke", "height", "höhe"}, {"gauge", "gage", "rate"}, "depth_mm", "--depth-mm",
      &TensileGeometry::depth_m, kC348PrismDepth},
@@ -41,8 +41,8 @@ void add_source(std::string& sources, const std::string& s) {
     sources += (sources.empty() ? "" : "+") + s;
 }
 
-[[noreturn]] void missing_dimension(const Dimension& d, const RawTable& t, const TensileSpec& spec, TensileTestKind kind) {
-    const std::string what = std::string(tensile_test_name(kind)) + " test: the export states no specimen " + d.what;
+[[noreturn]] void missing_dimension(const SpecimenDimension& d, const RawTable& t, const TensileSpec& spec, TensileTestKind kind) {
+    const std::string what = std::string(to_string(kind)) + " test: the export states no specimen " + d.what;
     if (spec.config_file.empty())
         throw InputError(t.file, 0, what + "; give " + d.option + " (mm)");
     throw InputError(spec.config_file.string(), spec.config_line,
@@ -51,7 +51,7 @@ void add_source(std::string& sources, const std::string& s) {
 
 // Where a dimension the file does not state comes from: the dataset's group, the command line,
 // or ASTM C348.
-NominalDimension nominal_of(const Dimension& d, double value_m, const TensileSpec& spec, bool standard) {
+NominalDimension nominal_of(const SpecimenDimension& d, double value_m, const TensileSpec& spec, bool standard) {
     if (standard) return {d.what, value_m, "ASTM C348 (the 40 x 40 mm prism on a 120 mm span)", {}};
     if (spec.config_file.empty()) return {d.what, value_m, "the command line", d.option};
     return {d.what, value_m, spec.config_file.string() + " " + spec.label, d.config_key};
@@ -65,16 +65,7 @@ std::string mm(double m) {
 
 }  // namespace
 
-const char* tensile_test_name(TensileTestKind kind) {
-    return kind == TensileTestKind::splitting ? "splitting" : "flexural";
-}
-
-std::optional<TensileTestKind> parse_tensile_test(std::string_view name) {
-    const std::string n = to_lower(trim(name));
-    if (n == "splitting") return TensileTestKind::splitting;
-    if (n == "flexural") return TensileTestKind::flexural;
-    return std::nullopt;
-}
+std::optional<TensileTestKind> parse_tensile_test(std::string_view name) { return parse_enum<TensileTestKind>(to_lower(trim(name))); }
 
 double splitting_tensile_strength_pa(double peak_load_n, double length_m, double diameter_m) {
     return 2 * peak_load_n / (std::numbers::pi * length_m * diameter_m);  // ASTM C496: T = 2P/(π l d)
@@ -120,10 +111,10 @@ TensileGeometry tensile_geometry(const RawTable& t, const TensileSpec& spec, std
     const bool splitting = spec.test == TensileTestKind::splitting;
     const auto* begin = splitting ? std::begin(kSplitting) : std::begin(kFlexural);
     const auto* end = splitting ? std::end(kSplitting) : std::end(kFlexural);
-    for (const Dimension* d = begin; d != end; ++d) {
+    for (const SpecimenDimension* d = begin; d != end; ++d) {
         double& value = g.*(d->field);
         if (spec.use_file_geometry)
-            if (const auto v = metadata_dimension(t, d->keys, d->not_keys, Quantity::length, notes)) {
+            if (const auto v = metadata_dimension(t, d->keys, d->not_keys, Dimension::length, notes)) {
                 value = *v;
                 add_source(g.source, "file");
                 continue;

@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/named_enum.hpp"
 #include "lab_data/lab_warning.hpp"
 #include "lab_data/load_frame_test.hpp"
 #include "lab_data/raw_table.hpp"
@@ -33,10 +34,12 @@ namespace gradem::lab {
 
 enum class TensileTestKind { splitting, flexural };
 
-/// "splitting", "flexural" (the dataset's `test` values and the command line's --test).
-const char* tensile_test_name(TensileTestKind kind);
+/// The dataset's `test` values and the command line's --test.
+constexpr EnumNameTable<TensileTestKind, 2> enum_name_table(TensileTestKind) {
+    return {{{TensileTestKind::splitting, "splitting"}, {TensileTestKind::flexural, "flexural"}}};
+}
+/// parse_enum<TensileTestKind> ignoring case and outer spaces.
 std::optional<TensileTestKind> parse_tensile_test(std::string_view name);
-inline constexpr const char* kTensileTestNames = "splitting or flexural";
 
 /// ASTM C348 prism and span: the flexural defaults [m].
 inline constexpr double kC348PrismWidth = 0.040;

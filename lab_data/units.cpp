@@ -12,43 +12,43 @@ constexpr double kPoundForce = 4.4482216152605;  // N (exact by definition of lb
 
 struct UnitSpelling {
     const char* spelling;  // lower case, micro sign written as 'u', '²' as '2'
-    Quantity quantity;
+    Dimension dimension;
     double to_si;
     const char* symbol;
 };
 
 constexpr std::array<UnitSpelling, 56> kUnits = {{
-    {"s", Quantity::time, 1.0, "s"},           {"sec", Quantity::time, 1.0, "s"},
-    {"secs", Quantity::time, 1.0, "s"},        {"second", Quantity::time, 1.0, "s"},
-    {"seconds", Quantity::time, 1.0, "s"},     {"ms", Quantity::time, 1e-3, "ms"},
-    {"min", Quantity::time, 60.0, "min"},      {"h", Quantity::time, 3600.0, "h"},
-    {"hr", Quantity::time, 3600.0, "h"},       {"d", Quantity::time, 86400.0, "d"},
-    {"n", Quantity::force, 1.0, "N"},          {"kn", Quantity::force, 1e3, "kN"},
-    {"lbf", Quantity::force, kPoundForce, "lbf"}, {"lb", Quantity::force, kPoundForce, "lbf"},
-    {"lbs", Quantity::force, kPoundForce, "lbf"}, {"kip", Quantity::force, 1e3 * kPoundForce, "kip"},
-    {"kips", Quantity::force, 1e3 * kPoundForce, "kip"}, {"kgf", Quantity::force, 9.80665, "kgf"},
-    {"mm", Quantity::length, 1e-3, "mm"},      {"m", Quantity::length, 1.0, "m"},
-    {"cm", Quantity::length, 1e-2, "cm"},      {"um", Quantity::length, 1e-6, "µm"},
-    {"in", Quantity::length, kInch, "in"},     {"inch", Quantity::length, kInch, "in"},
-    {"inches", Quantity::length, kInch, "in"}, {"\"", Quantity::length, kInch, "in"},
-    {"mm/mm", Quantity::strain, 1.0, "mm/mm"}, {"m/m", Quantity::strain, 1.0, "m/m"},
-    {"in/in", Quantity::strain, 1.0, "in/in"},
-    {"-", Quantity::strain, 1.0, "mm/mm"},     {"%", Quantity::strain, 1e-2, "%"},
-    {"pct", Quantity::strain, 1e-2, "%"},      {"percent", Quantity::strain, 1e-2, "%"},
-    {"mm/m", Quantity::strain, 1e-3, "mm/m"},  {"ue", Quantity::strain, 1e-6, "µε"},
-    {"ustrain", Quantity::strain, 1e-6, "µε"}, {"microstrain", Quantity::strain, 1e-6, "µε"},
-    {"um/m", Quantity::strain, 1e-6, "µε"},
-    {"pa", Quantity::stress, 1.0, "Pa"},       {"kpa", Quantity::stress, 1e3, "kPa"},
-    {"mpa", Quantity::stress, 1e6, "MPa"},     {"gpa", Quantity::stress, 1e9, "GPa"},
-    {"n/mm2", Quantity::stress, 1e6, "MPa"},   {"n/mm^2", Quantity::stress, 1e6, "MPa"},
-    {"psi", Quantity::stress, kPoundForce / (kInch * kInch), "psi"},
-    {"ksi", Quantity::stress, 1e3 * kPoundForce / (kInch * kInch), "ksi"},
-    {"lbf/in2", Quantity::stress, kPoundForce / (kInch * kInch), "psi"},
-    {"lbf/in^2", Quantity::stress, kPoundForce / (kInch * kInch), "psi"},
-    {"mm2", Quantity::area, 1e-6, "mm²"},      {"mm^2", Quantity::area, 1e-6, "mm²"},
-    {"m2", Quantity::area, 1.0, "m²"},         {"cm2", Quantity::area, 1e-4, "cm²"},
-    {"in2", Quantity::area, kInch * kInch, "in²"}, {"in^2", Quantity::area, kInch * kInch, "in²"},
-    {"sq in", Quantity::area, kInch * kInch, "in²"}, {"sq. in.", Quantity::area, kInch * kInch, "in²"},
+    {"s", Dimension::time, 1.0, "s"},           {"sec", Dimension::time, 1.0, "s"},
+    {"secs", Dimension::time, 1.0, "s"},        {"second", Dimension::time, 1.0, "s"},
+    {"seconds", Dimension::time, 1.0, "s"},     {"ms", Dimension::time, 1e-3, "ms"},
+    {"min", Dimension::time, 60.0, "min"},      {"h", Dimension::time, 3600.0, "h"},
+    {"hr", Dimension::time, 3600.0, "h"},       {"d", Dimension::time, 86400.0, "d"},
+    {"n", Dimension::force, 1.0, "N"},          {"kn", Dimension::force, 1e3, "kN"},
+    {"lbf", Dimension::force, kPoundForce, "lbf"}, {"lb", Dimension::force, kPoundForce, "lbf"},
+    {"lbs", Dimension::force, kPoundForce, "lbf"}, {"kip", Dimension::force, 1e3 * kPoundForce, "kip"},
+    {"kips", Dimension::force, 1e3 * kPoundForce, "kip"}, {"kgf", Dimension::force, 9.80665, "kgf"},
+    {"mm", Dimension::length, 1e-3, "mm"},      {"m", Dimension::length, 1.0, "m"},
+    {"cm", Dimension::length, 1e-2, "cm"},      {"um", Dimension::length, 1e-6, "µm"},
+    {"in", Dimension::length, kInch, "in"},     {"inch", Dimension::length, kInch, "in"},
+    {"inches", Dimension::length, kInch, "in"}, {"\"", Dimension::length, kInch, "in"},
+    {"mm/mm", Dimension::strain, 1.0, "mm/mm"}, {"m/m", Dimension::strain, 1.0, "m/m"},
+    {"in/in", Dimension::strain, 1.0, "in/in"},
+    {"-", Dimension::strain, 1.0, "mm/mm"},     {"%", Dimension::strain, 1e-2, "%"},
+    {"pct", Dimension::strain, 1e-2, "%"},      {"percent", Dimension::strain, 1e-2, "%"},
+    {"mm/m", Dimension::strain, 1e-3, "mm/m"},  {"ue", Dimension::strain, 1e-6, "µε"},
+    {"ustrain", Dimension::strain, 1e-6, "µε"}, {"microstrain", Dimension::strain, 1e-6, "µε"},
+    {"um/m", Dimension::strain, 1e-6, "µε"},
+    {"pa", Dimension::stress, 1.0, "Pa"},       {"kpa", Dimension::stress, 1e3, "kPa"},
+    {"mpa", Dimension::stress, 1e6, "MPa"},     {"gpa", Dimension::stress, 1e9, "GPa"},
+    {"n/mm2", Dimension::stress, 1e6, "MPa"},   {"n/mm^2", Dimension::stress, 1e6, "MPa"},
+    {"psi", Dimension::stress, kPoundForce / (kInch * kInch), "psi"},
+    {"ksi", Dimension::stress, 1e3 * kPoundForce / (kInch * kInch), "ksi"},
+    {"lbf/in2", Dimension::stress, kPoundForce / (kInch * kInch), "psi"},
+    {"lbf/in^2", Dimension::stress, kPoundForce / (kInch * kInch), "psi"},
+    {"mm2", Dimension::area, 1e-6, "mm²"},      {"mm^2", Dimension::area, 1e-6, "mm²"},
+    {"m2", Dimension::area, 1.0, "m²"},         {"cm2", Dimension::area, 1e-4, "cm²"},
+    {"in2", Dimension::area, kInch * kInch, "in²"}, {"in^2", Dimension::area, kInch * kInch, "in²"},
+    {"sq in", Dimension::area, kInch * kInch, "in²"}, {"sq. in.", Dimension::area, kInch * kInch, "in²"},
 }};
 
 // Lower-case, strip "()"/"[]", and write the micro sign, Greek mu/epsilon and '²' in ASCII.
@@ -66,26 +66,14 @@ std::string normalise(std::string_view text) {
 
 }  // namespace
 
-const char* quantity_name(Quantity q) {
+const char* accepted_units(Dimension q) {
     switch (q) {
-        case Quantity::time: return "time";
-        case Quantity::force: return "force";
-        case Quantity::length: return "length";
-        case Quantity::strain: return "strain";
-        case Quantity::stress: return "stress";
-        case Quantity::area: return "area";
-    }
-    return "?";
-}
-
-const char* accepted_units(Quantity q) {
-    switch (q) {
-        case Quantity::time: return "s, sec, ms, min";
-        case Quantity::force: return "N, kN, lbf, kip";
-        case Quantity::length: return "mm, m, in";
-        case Quantity::strain: return "mm/mm, in/in, %, µε";
-        case Quantity::stress: return "MPa, kPa, Pa, psi, ksi";
-        case Quantity::area: return "mm², in²";
+        case Dimension::time: return "s, sec, ms, min";
+        case Dimension::force: return "N, kN, lbf, kip";
+        case Dimension::length: return "mm, m, in";
+        case Dimension::strain: return "mm/mm, in/in, %, µε";
+        case Dimension::stress: return "MPa, kPa, Pa, psi, ksi";
+        case Dimension::area: return "mm², in²";
     }
     return "?";
 }
@@ -94,7 +82,7 @@ std::optional<Unit> parse_unit(std::string_view text) {
     const std::string key = normalise(text);
     if (key.empty()) return std::nullopt;
     for (const auto& u : kUnits)
-        if (key == u.spelling) return Unit{u.quantity, u.to_si, u.symbol};
+        if (key == u.spelling) return Unit{u.dimension, u.to_si, u.symbol};
     return std::nullopt;
 }
 

@@ -6,16 +6,26 @@
 #include <string>
 #include <string_view>
 
+#include "common/named_enum.hpp"
+
 namespace gradem::lab {
 
-enum class Quantity { time, force, length, strain, stress, area };
+/// What a unit measures (one Dimension per unit; the calibration's target quantities are cal::Quantity).
+enum class Dimension { time, force, length, strain, stress, area };
+constexpr EnumNameTable<Dimension, 6> enum_name_table(Dimension) {
+    return {{{Dimension::time, "time"},
+             {Dimension::force, "force"},
+             {Dimension::length, "length"},
+             {Dimension::strain, "strain"},
+             {Dimension::stress, "stress"},
+             {Dimension::area, "area"}}};
+}
 
-const char* quantity_name(Quantity q);
 /// The unit spellings accepted for a quantity, for error messages ("N, kN, lbf, kip").
-const char* accepted_units(Quantity q);
+const char* accepted_units(Dimension q);
 
 struct Unit {
-    Quantity quantity = Quantity::force;
+    Dimension dimension = Dimension::force;
     double to_si = 1.0;  ///< multiply a value in this unit by to_si to get s, N, m, m/m, Pa or m²
     std::string symbol;  ///< canonical spelling, e.g. "kN", "µε"
 };

@@ -7,7 +7,7 @@
 #include <functional>
 #include <sstream>
 
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 namespace {

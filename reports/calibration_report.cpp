@@ -11,7 +11,7 @@
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"
 #include "common/number_format.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 
 namespace gradem::cal {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/json_number.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/config/material_table.hpp"
 #include "reports/vtk_output.hpp"
 
 namespace gradem::exp {
@@ -174,7 +174,7 @@ std::string macro_json(const CubeTestResult& r, const CubeConfig& c, const Packi
         {"chord_modulus_mpa", num(m.chord_modulus_pa * kMpa)},
         {"tangent_modulus_mpa", num(m.tangent_modulus_pa * kMpa)},
         {"poisson_ratio", num(m.poisson_ratio)},
-        {"reduction", {{"status", lab::status_name(m.status)},
+        {"reduction", {{"status", to_string(m.status)},
                        {"message", m.message},
                        {"chord_s1_mpa", num(m.chord_s1_pa * kMpa)},
                        {"chord_s2_mpa", num(m.chord_s2_pa * kMpa)},

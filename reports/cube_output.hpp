@@ -17,10 +17,10 @@
 #include <optional>
 #include <string>
 
-#include "experiments/cube_config.hpp"
-#include "experiments/cube_test.hpp"
-#include "experiments/genesis.hpp"
-#include "experiments/paste_fill.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/specimen/genesis.hpp"
+#include "experiments/paste/paste_fill.hpp"
 
 namespace gradem::exp {
 

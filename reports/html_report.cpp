@@ -110,22 +110,6 @@ HtmlReportOutcome failure(HtmlReportOutcome o, ReportStatus status, std::string 
 
 }  // namespace
 
-const char* to_string(ReportKind kind) {
-    switch (kind) {
-        case ReportKind::lab: return "lab";
-        case ReportKind::compress: return "compress";
-        case ReportKind::calibrate: return "calibrate";
-        case ReportKind::study: return "study";
-    }
-    return "?";
-}
-
-std::optional<ReportKind> parse_report_kind(std::string_view name) {
-    for (ReportKind k : {ReportKind::lab, ReportKind::compress, ReportKind::calibrate, ReportKind::study})
-        if (name == to_string(k)) return k;
-    return std::nullopt;
-}
-
 fs::path report_python() {
     const char* override = std::getenv("GRADEM_PYTHON");
     return override != nullptr && *override != '\0' ? fs::path(override) : fs::path("/usr/bin/python3");
@@ -164,13 +148,6 @@ HtmlReportOutcome write_html_report(ReportKind kind, const fs::path& out_dir) {
         fs::remove(temp, ec);
         return failure(o, ReportStatus::failed, e.what());
     }
-}
-
-std::vector<std::string> report_kind_names() {
-    std::vector<std::string> names;
-    for (ReportKind k : {ReportKind::lab, ReportKind::compress, ReportKind::calibrate, ReportKind::study})
-        names.emplace_back(to_string(k));
-    return names;
 }
 
 bool write_html_report_or_warn(ReportKind kind, const fs::path& out_dir, std::ostream& announce) {

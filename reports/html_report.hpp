@@ -1,5 +1,5 @@
 #pragma once
-// HTML reports: `gradem lab`, `gradem compress`, `gradem calibrate` and `gradem study` end by writing
+// HTML reports: the commands of GRADEM_REPORT_KINDS below end by writing
 // report.html next to their CSV/JSON files — one self-contained page (inline SVG figures, inline
 // CSS, no external files, opens offline). The page is made from those files only, by the Python
 // generator in reports/html/ (matplotlib, run on /usr/bin/python3; embedded in the binary at
@@ -10,6 +10,7 @@
 // install and keeps its exit status. No report.html is left that does not belong to the files
 // next to it: it is written to a temporary file and renamed into place, and a stale one from an
 // earlier run is removed when a new one cannot be made.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -17,14 +18,32 @@
 #include <string_view>
 #include <vector>
 
+#include "common/named_enum.hpp"
+
 namespace gradem::report {
 
-enum class ReportKind { lab, compress, calibrate, study };
+// THE list of report kinds: one row each, KIND(<kind>), where <kind> is the command whose output
+// folder the report shows and the name `gradem report` takes. A kind is this row plus its
+// generator module reports/html/<kind>_report.py (build(out_dir) -> the page; make_report.py
+// loads it by name, the build embeds every module of reports/html/), and the command calls
+// write_html_report_or_warn(ReportKind::<kind>, ...) (docs/extending.md "A report kind").
+// clang-format off
+#define GRADEM_REPORT_KINDS(KIND) \
+    KIND(lab)                     \
+    KIND(compress)                \
+    KIND(calibrate)               \
+    KIND(study)
+// clang-format on
 
-const char* to_string(ReportKind kind);
-std::optional<ReportKind> parse_report_kind(std::string_view name);
-/// Every kind parse_report_kind() accepts, in order: {"lab", "compress", "calibrate", "study"}.
-std::vector<std::string> report_kind_names();
+#define GRADEM_REPORT_KIND_ENUMERATOR(name) name,
+/// Which command's outputs a report shows, one enumerator per row of GRADEM_REPORT_KINDS.
+enum class ReportKind { GRADEM_REPORT_KINDS(GRADEM_REPORT_KIND_ENUMERATOR) };
+#undef GRADEM_REPORT_KIND_ENUMERATOR
+
+#define GRADEM_REPORT_KIND_ROW(name) EnumName<ReportKind>{ReportKind::name, #name},
+/// The kinds' names (common/named_enum.hpp: to_string, parse_enum<ReportKind>, enum_names).
+constexpr auto enum_name_table(ReportKind) { return std::to_array({GRADEM_REPORT_KINDS(GRADEM_REPORT_KIND_ROW)}); }
+#undef GRADEM_REPORT_KIND_ROW
 
 /// The interpreter that runs the generator: $GRADEM_PYTHON if set (tests use it to simulate a
 /// missing interpreter or library), else /usr/bin/python3.

@@ -90,7 +90,7 @@ json sand(const SandResult& s) {
 
 json tensile_test(const TensileResult& t) {
     const TensileGeometry& g = t.geometry;
-    json j = {{"file", t.file}, {"sand", t.sand}, {"batch", t.batch}, {"test", tensile_test_name(t.test)}, {"format", t.format},
+    json j = {{"file", t.file}, {"sand", t.sand}, {"batch", t.batch}, {"test", to_string(t.test)}, {"format", t.format},
               {"representative", t.representative}, {"columns", t.columns}, {"peak_load_n", number(t.peak_load_n)},
               {"peak_line", t.peak_line}};
     if (t.test == TensileTestKind::splitting) {

@@ -162,7 +162,7 @@ void print_tensile_tests(std::ostream& out, const LabStats& lab) {
         const std::string geometry = t.test == TensileTestKind::splitting
                                          ? "d " + f(gm.diameter_m * 1e3, 1) + " l " + f(gm.length_m * 1e3, 1)
                                          : f(gm.width_m * 1e3, 1) + "x" + f(gm.depth_m * 1e3, 1) + " L " + f(gm.span_m * 1e3, 1);
-        out << "  " << pad(t.file, 34) << pad(tensile_test_name(t.test), 11) << pad(f(t.peak_load_n / 1e3, 3), 10) << pad(geometry, 22)
+        out << "  " << pad(t.file, 34) << pad(to_string(t.test), 11) << pad(f(t.peak_load_n / 1e3, 3), 10) << pad(geometry, 22)
             << pad(f(t.strength_pa / 1e6, 3), 14) << pad(f(t.direct_factor, 4), 8) << f(t.direct_equivalent_pa / 1e6, 3) << "\n";
     }
 }
@@ -213,7 +213,7 @@ std::string tensile_tests_csv(const LabStats& lab) {
         auto dim = [](bool used, double m) { return used ? g(m * 1e3) : std::string(); };
         std::string flags;
         for (const auto& fl : t.flags) flags += (flags.empty() ? "" : ";") + fl;
-        o << csv_text(t.file) << ',' << csv_text(t.sand) << ',' << csv_text(t.batch) << ',' << tensile_test_name(t.test) << ','
+        o << csv_text(t.file) << ',' << csv_text(t.sand) << ',' << csv_text(t.batch) << ',' << to_string(t.test) << ','
           << t.format << ',' << (t.representative ? "true" : "false") << ',' << g(t.peak_load_n) << ',' << dim(splitting, gm.diameter_m)
           << ',' << dim(splitting, gm.length_m) << ',' << dim(!splitting, gm.width_m) << ',' << dim(!splitting, gm.depth_m) << ','
           << dim(!splitting, gm.span_m) << ',' << csv_text(gm.source) << ',' << g(t.strength_pa / 1e6) << ',' << g(t.direct_factor) << ','

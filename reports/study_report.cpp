@@ -5,14 +5,16 @@
 #include <cmath>
 #include <sstream>
 
-#include "calibrate/ledger.hpp"
-#include "calibrate/study_kinds.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/study/study.hpp"
 #include "common/atomic_file.hpp"
 #include "common/clock_text.hpp"
 #include "common/json_number.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
 namespace {
+
+using namespace cal;  // the study's result types
 
 using nlohmann::json;
 constexpr auto number = common::json_number<json>;  // a number, or null when it is not finite
@@ -59,8 +61,9 @@ std::string markdown(const StudyResult& r) {
     if (r.representative) md << "> **The lab data are REPRESENTATIVE, not measurements.**\n\n";
     md << "- calibration: ";
     for (std::size_t k = 0; k < r.calibration_summaries.size(); ++k) md << (k ? ", " : "") << r.calibration_summaries[k];
-    if (r.config.kind != StudyKind::model_form) md << "\n- packing seeds per sand: " << r.config.seeds.size();
-    md << "\n- DEM runs" << (r.config.kind == StudyKind::model_form ? " (direct-tension tests for sigma_c/sigma_t, each calibration's seeds)" : "")
+    const StudyKindSpec& kind = study_kind(r.config.kind);
+    if (kind.one_calibration) md << "\n- packing seeds per sand: " << r.config.seeds.size();
+    md << "\n- DEM runs" << kind.runs_note
        << ": " << r.runs_executed << " run now, "
        << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed; wall time " << common::clock_text(r.wall_seconds)
        << "\n\n## Answer\n\n";
@@ -97,7 +100,7 @@ std::string runs_csv(const StudyResult& r) {
 
 }  // namespace
 
-void write_study_outputs(const StudyResult& r) {
+void write_study_outputs(const cal::StudyResult& r) {
     const json j = {{"schema", "gradem-study/1"},
                     {"kind", to_string(r.config.kind)},
                     {"study_file", r.config.file.string()},
@@ -117,4 +120,4 @@ void write_study_outputs(const StudyResult& r) {
     common::write_file_atomically(r.config.out_dir / "runs.csv", runs_csv(r));
 }
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

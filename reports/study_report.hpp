@@ -1,10 +1,10 @@
 #pragma once
 // The result files of a `gradem study` (reports/study_report.cpp).
-#include "calibrate/study.hpp"
+#include "calibrate/study/study.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
 
 /// study.json, study.md and runs.csv in config.out_dir, each written atomically.
-void write_study_outputs(const StudyResult& result);
+void write_study_outputs(const cal::StudyResult& result);
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

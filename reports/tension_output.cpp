@@ -7,6 +7,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/input_error.hpp"
+#include "common/json_file.hpp"
 #include "common/json_number.hpp"
 
 namespace gradem::exp {
@@ -33,17 +34,10 @@ double ratio(double numerator, double denominator) {
 
 json read_compression_document(const std::filesystem::path& file) {
     const std::string name = file.string();
-    std::ifstream in(file);
     std::error_code ec;
     if (!std::filesystem::exists(file, ec))
         throw common::InputError(name, 0, "no such file (the compression macro.json: `gradem compress` writes it)");
-    if (!in) throw common::InputError(name, 0, "cannot read the compression macro.json");
-    json doc;
-    try {
-        doc = json::parse(in);
-    } catch (const json::exception& e) {
-        throw common::InputError(name, 0, std::string("not a JSON file: ") + e.what());
-    }
+    const json doc = common::read_json_file<json>(file, "the compression macro.json");
     if (!doc.is_object() || doc.contains("tensile_strength_mpa") || !doc.contains("peak_stress_mpa") ||
         !doc["peak_stress_mpa"].is_number())
         throw common::InputError(name, 0, "not the macro.json of a compression test (`gradem compress`): expected a "

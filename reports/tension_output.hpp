@@ -14,8 +14,8 @@
 #include <optional>
 #include <string>
 
-#include "experiments/cube_config.hpp"
-#include "experiments/tension_test.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/tension_test.hpp"
 #include "reports/cube_output.hpp"
 
 namespace gradem::exp {

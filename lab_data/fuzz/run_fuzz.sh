@@ -14,7 +14,7 @@ repo="$(cd "$here/../.." && pwd)"
 build="${GRADEM_FUZZ_BUILD:-$repo/build-fuzz}"
 seconds="${GRADEM_FUZZ_SECONDS:-20}"
 jobs="${GRADEM_FUZZ_JOBS:-2}"
-targets=(mts_testsuite mts793 bluehill plain_csv autodetect sieve_table tension)
+targets=(exports sieve_table tension)
 
 command -v clang++ >/dev/null || { echo "run_fuzz: clang++ not found (apt-get install clang)" >&2; exit 2; }
 CXX=clang++ cmake -S "$repo" -B "$build" -DGRADEM_FUZZ=ON -DGRADEM_OPENMP=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null

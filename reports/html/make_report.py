@@ -2,7 +2,9 @@
 
     /usr/bin/python3 make_report.py KIND OUT_DIR [TEMP_FILE]
 
-KIND is lab, compress, calibrate or study; OUT_DIR holds that command's CSV/JSON outputs. The page is
+KIND is a report kind (reports/html_report.hpp, GRADEM_REPORT_KINDS): its page is made by the
+module KIND_report.py beside this file (build(out_dir) -> the page's text); OUT_DIR holds that
+command's CSV/JSON outputs. The page is
 written to TEMP_FILE (the caller renames it into place: reports/html_report.cpp) or, without
 TEMP_FILE, to OUT_DIR/report.html through a temporary file and a rename. The `gradem` binary
 carries these files (embedded at build time) and runs them this way at the end of each command.
@@ -11,17 +13,23 @@ Exit status: 0 written; 2 an output file is missing or not as expected (the mess
 file, line and what was expected); 3 matplotlib or numpy is missing; 1 usage.
 """
 
+import importlib
 import os
 import sys
 
 EXIT_BAD_INPUT = 2
 EXIT_NO_MATPLOTLIB = 3
-KINDS = ("lab", "compress", "calibrate", "study")
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def kinds():
+    """The report kinds: every KIND_report.py beside this file."""
+    return sorted(f[:-len("_report.py")] for f in os.listdir(HERE) if f.endswith("_report.py"))
 
 
 def main(argv):
-    if len(argv) not in (3, 4) or argv[1] not in KINDS:
-        print(f"usage: make_report.py {{{'|'.join(KINDS)}}} OUT_DIR [TEMP_FILE]", file=sys.stderr)
+    if len(argv) not in (3, 4) or argv[1] not in kinds():
+        print(f"usage: make_report.py {{{'|'.join(kinds())}}} OUT_DIR [TEMP_FILE]", file=sys.stderr)
         return 1
     kind, out_dir = argv[1], argv[2]
     try:
@@ -30,16 +38,10 @@ def main(argv):
     except ImportError as e:
         print(f"python3 cannot import {e.name} ({sys.executable})", file=sys.stderr)
         return EXIT_NO_MATPLOTLIB
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    sys.path.insert(0, HERE)
     from inputs import InputError
-    import lab_report
-    import compress_report
-    import calibrate_report
-    import study_report
-    builders = {"lab": lab_report.build, "compress": compress_report.build, "calibrate": calibrate_report.build,
-                "study": study_report.build}
     try:
-        text = builders[kind](out_dir)
+        text = importlib.import_module(f"{kind}_report").build(out_dir)
     except InputError as e:
         print(f"{e}", file=sys.stderr)
         return EXIT_BAD_INPUT

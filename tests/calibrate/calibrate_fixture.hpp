@@ -15,7 +15,7 @@
 #include "calibrate/calibration.hpp"
 #include "calibrate/cube_model.hpp"
 #include "calibrate/parameters.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 #include "../temp_dir.hpp"
 
 namespace gradem::test {

@@ -17,7 +17,7 @@
 #include <thread>
 
 #include "calibrate/calibration.hpp"
-#include "calibrate/mpi_executor.hpp"
+#include "calibrate/execution/mpi_executor.hpp"
 #include "reports/calibration_report.hpp"
 
 using namespace gradem;

@@ -9,11 +9,11 @@
 #include <set>
 #include <string>
 
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "core/bond_models.hpp"
 #include "core/params.hpp"
-#include "experiments/cube_test.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/config/material_table.hpp"
 
 using namespace gradem;
 

@@ -13,11 +13,11 @@
 #include <sstream>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/objective.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate_fixture.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 #include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;

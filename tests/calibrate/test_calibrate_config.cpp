@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "calibrate/cube_model.hpp"
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate/problem.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/paste_cache.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
 

@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include "calibrate_fixture.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/tension_config.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/config/tension_config.hpp"
 #include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;

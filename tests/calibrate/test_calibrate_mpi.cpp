@@ -19,9 +19,9 @@
 #include <sstream>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
+#include "calibrate/execution/ledger.hpp"
 #include "calibrate_fixture.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;

@@ -5,8 +5,8 @@
 
 #include "calibrate/plan.hpp"
 #include "calibrate_fixture.hpp"
-#include "experiments/cube_test.hpp"
-#include "experiments/packing_cache.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/specimen/packing_cache.hpp"
 
 namespace fs = std::filesystem;
 using namespace gradem;

@@ -9,10 +9,10 @@
 
 #include "calibrate/objective.hpp"
 #include "calibrate/problem.hpp"
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 #include "lab_data/lab_stats.hpp"
 #include "reports/lab_report.hpp"
 #include "reports/calibration_report.hpp"

@@ -7,7 +7,7 @@
 #include "calibrate/problem.hpp"
 #include "calibrate/validation.hpp"
 #include "calibrate_fixture.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 #include "reports/calibration_report.hpp"
 
 namespace fs = std::filesystem;

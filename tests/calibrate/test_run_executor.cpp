@@ -13,9 +13,9 @@
 #include <set>
 #include <thread>
 
-#include "calibrate/ledger.hpp"
-#include "calibrate/run_executor.hpp"
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/execution/run_executor.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "calibrate_fixture.hpp"
 
 namespace fs = std::filesystem;
@@ -111,7 +111,7 @@ TEST_CASE("material keys tell bond laws apart and keep parallel-bond keys as bef
 TEST_CASE("run result round trip is bitwise, NaN and curve included", "[calibrate][executor]") {
     cal::wire::Result r;
     r.job = 9;
-    r.outcome.status = cal::RunStatus::diverged;
+    r.outcome.status = cal::OutcomeStatus::diverged;
     r.outcome.reason = "diverged: kinetic energy blew up";
     r.outcome.modulus_pa = 1.0 / 3.0 * 1e10;
     r.outcome.peak_pa = std::nextafter(2e7, 3e7);
@@ -123,7 +123,7 @@ TEST_CASE("run result round trip is bitwise, NaN and curve included", "[calibrat
     const std::string bytes = cal::wire::encode(r);
     const cal::wire::Result b = cal::wire::decode_result(bytes);
     CHECK(b.job == 9);
-    CHECK(b.outcome.status == cal::RunStatus::diverged);
+    CHECK(b.outcome.status == cal::OutcomeStatus::diverged);
     CHECK(b.outcome.reason == r.outcome.reason);
     CHECK(same_bits(b.outcome.modulus_pa, r.outcome.modulus_pa));
     CHECK(same_bits(b.outcome.peak_pa, r.outcome.peak_pa));
@@ -211,7 +211,7 @@ TEST_CASE("ledger: rank and host per run, a schema-1 ledger is upgraded and stay
         CHECK(found->modulus_pa == 1.5e10);
         CHECK(found->curve_strain.size() == 2);
         cal::RunOutcome o;
-        o.status = cal::RunStatus::ok;
+        o.status = cal::OutcomeStatus::ok;
         ledger.record("k2", "a", 2, "{}", "m", o, {5, "node-17"});
         CHECK(ledger.size() == 2);
     }
@@ -242,7 +242,7 @@ TEST_CASE("ledger: a process killed in the middle of a commit leaves a hot journ
     TempDir dir("cal-ledger-journal");
     const fs::path path = dir.path / "ledger.sqlite";
     cal::RunOutcome ok;
-    ok.status = cal::RunStatus::ok;
+    ok.status = cal::OutcomeStatus::ok;
     ok.modulus_pa = 1e10;
     { cal::Ledger(path, "fp", "p").record("committed", "a", 1, "{}", "m", ok); }
     // A child writes a row and dies before COMMIT (as kill -9 in Ledger::record would).
@@ -266,6 +266,6 @@ TEST_CASE("ledger: a process killed in the middle of a commit leaves a hot journ
     cal::Ledger ledger(path, "fp", "p");
     const auto found = ledger.find("committed");
     REQUIRE(found);
-    CHECK(found->status == cal::RunStatus::ok);
+    CHECK(found->status == cal::OutcomeStatus::ok);
     CHECK(ledger.size() == 1);
 }

@@ -5,13 +5,14 @@
 #include <cmath>
 #include <fstream>
 
-#include "calibrate/run_executor.hpp"
-#include "calibrate/study.hpp"
-#include "calibrate/study_kinds.hpp"
-#include "calibrate/study_models.hpp"
+#include "calibrate/execution/run_executor.hpp"
+#include "calibrate/study/study.hpp"
+#include "calibrate/study/size_sweep.hpp"
+#include "calibrate/study/study_tables.hpp"
+#include "calibrate/study/study_models.hpp"
 #include "calibrate_fixture.hpp"
 #include "common/input_error.hpp"
-#include "experiments/cube_config.hpp"
+#include "experiments/config/cube_config.hpp"
 #include "reports/calibration_report.hpp"
 #include "reports/study_report.hpp"
 
@@ -89,7 +90,7 @@ TEST_CASE("study: gradation_effect gives the seed statistics of the model and a 
     CHECK(pair["simulated"]["low"].get<double>() < pair["simulated"]["estimate"].get<double>());
     CHECK(pair["lab"]["estimate"].get<double>() == Approx((cp.problem.targets[0].peak.mean - cp.problem.targets[1].peak.mean) * 1e-6));
     REQUIRE(r.verdict.size() == 3);
-    cal::write_study_outputs(r);
+    report::write_study_outputs(r);
     CHECK(fs::exists(config.out_dir / "study.json"));
     CHECK(fs::exists(config.out_dir / "study.md"));
 
@@ -255,7 +256,7 @@ TEST_CASE("study: model_form tabulates calibrations with their shape index, sigm
     const auto& header = r.tables.front().header;
     CHECK(std::find(header.begin(), header.end(), "sigma_c/sigma_t") != header.end());
     CHECK(std::find(header.begin(), header.end(), "particle-steps/s") != header.end());
-    cal::write_study_outputs(r);
+    report::write_study_outputs(r);
     nlohmann::json written;
     std::ifstream(dir.path / "study-out" / "study.json") >> written;
     CHECK(written["data"]["models"][0]["sands"][1]["compressive_to_tensile_ratio"].is_number());
@@ -320,7 +321,7 @@ cal::StudyCase edge_case(double edge_mm, const std::vector<double>& moduli) {
     c.runs.resize(1);
     for (double e : moduli) {
         cal::RunOutcome r;
-        r.status = cal::RunStatus::ok;
+        r.status = cal::OutcomeStatus::ok;
         r.modulus_pa = e, r.peak_pa = 1.0, r.strain_at_peak = 1.0;
         c.runs[0].push_back(r);
         c.seeds.push_back(c.seeds.size() + 1);

@@ -2,8 +2,8 @@
 // The small specimen of the experiments tests: Van Buren sand (its Table 2 curve), grains of
 // 0.3–1.18 mm in a 3.6 mm cube, packing seed 5 (a few hundred grains: small and fast), made
 // once per test executable; and the material the cube and tension tests bond it with.
-#include "experiments/cube_test.hpp"
-#include "experiments/genesis.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/specimen/genesis.hpp"
 #include "study_curves.hpp"
 
 namespace gradem::test {

@@ -1,4 +1,4 @@
-// The bonding gap (experiments/cube_test.hpp MaterialParams::bond_gap): bonds are installed
+// The bonding gap (experiments/virtual_tests/cube_test.hpp MaterialParams::bond_gap): bonds are installed
 // between grains closer than the gap. A gap given as a fraction of the mean grain radius
 // (bond_gap_fraction) is a shape: a packing and its copy at half the size get the same bonds.
 // A gap given as a length (bond_gap_um, "the paste-bridge length, the same for every sand")
@@ -7,7 +7,7 @@
 // moduli and strengths (calibrate/README.md, the main job).
 #include <catch2/catch.hpp>
 
-#include "experiments/cube_specimen.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
 #include "small_specimen.hpp"
 
 using namespace gradem;

@@ -17,8 +17,8 @@
 #include <unistd.h>
 
 #include "common/input_error.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/material_table.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/config/material_table.hpp"
 #include "reports/cube_output.hpp"
 
 using namespace gradem;

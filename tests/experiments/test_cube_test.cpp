@@ -7,8 +7,8 @@
 #include <cstring>
 
 #include "core/parallel.hpp"
-#include "experiments/affine_estimate.hpp"
-#include "experiments/cube_test.hpp"
+#include "experiments/virtual_tests/affine_estimate.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
 #include "../with_threads.hpp"
 #include "small_specimen.hpp"
 

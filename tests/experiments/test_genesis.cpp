@@ -11,9 +11,9 @@
 #include <filesystem>
 
 #include "core/parallel.hpp"
-#include "experiments/genesis.hpp"
-#include "experiments/morton_order.hpp"
-#include "experiments/packing_cache.hpp"
+#include "experiments/specimen/genesis.hpp"
+#include "experiments/specimen/morton_order.hpp"
+#include "experiments/specimen/packing_cache.hpp"
 #include "../with_threads.hpp"
 #include "small_specimen.hpp"
 

@@ -13,7 +13,7 @@
 
 #include <unistd.h>
 
-#include "experiments/packing_cache.hpp"
+#include "experiments/specimen/packing_cache.hpp"
 #include "study_curves.hpp"
 
 using namespace gradem;

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "core/neighbor_search.hpp"
-#include "experiments/paste_fill.hpp"
-#include "experiments/paste_mix.hpp"
+#include "experiments/paste/paste_fill.hpp"
+#include "experiments/paste/paste_mix.hpp"
 
 using namespace gradem;
 using namespace gradem::exp;

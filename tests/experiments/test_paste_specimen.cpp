@@ -10,11 +10,11 @@
 #include <fstream>
 
 #include "core/parallel.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/cube_specimen.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/paste_cache.hpp"
-#include "experiments/tension_test.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/paste/paste_cache.hpp"
+#include "experiments/virtual_tests/tension_test.hpp"
 #include "common/input_error.hpp"
 #include "reports/cube_output.hpp"
 #include <nlohmann/json.hpp>

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "common/input_error.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/tension_config.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/config/tension_config.hpp"
 #include "reports/cube_output.hpp"
 #include "reports/tension_output.hpp"
 

@@ -62,14 +62,14 @@ TEST_CASE("lab: dialect sniffing: semicolon implies decimal comma", "[lab][reade
 }
 
 TEST_CASE("lab: units convert to SI", "[lab][readers]") {
-    CHECK(parse_unit("(sec)")->quantity == Quantity::time);
+    CHECK(parse_unit("(sec)")->dimension == Dimension::time);
     CHECK(parse_unit("kN")->to_si == 1e3);
     CHECK(parse_unit("lbf")->to_si == Approx(kLbf));
     CHECK(parse_unit("[in]")->to_si == Approx(kInch));
     CHECK(parse_unit("%")->to_si == 0.01);
     CHECK(parse_unit("\xC2\xB5\xCE\xB5")->to_si == 1e-6);  // µε with MICRO SIGN
     CHECK(parse_unit("\xCE\xBC\xCE\xB5")->to_si == 1e-6);  // με with GREEK MU
-    CHECK(parse_unit("in/in")->quantity == Quantity::strain);
+    CHECK(parse_unit("in/in")->dimension == Dimension::strain);
     CHECK(parse_unit("psi")->to_si == Approx(kLbf / (kInch * kInch)));
     CHECK(parse_unit("MPa")->to_si == 1e6);
     CHECK_FALSE(parse_unit("kp"));

@@ -1,0 +1,57 @@
+#include "experiments/config/tension_config.hpp"
+
+#include <algorithm>
+#include <string>
+#include <toml++/toml.h>
+
+#include "common/input_error.hpp"
+#include "common/toml_section.hpp"
+
+namespace gradem::exp {
+namespace {
+
+// "key 'tension.x' = v violates rule" at the key's line, from a validator's "Struct::x = v violates rule".
+[[noreturn]] void reject(common::toml_io::Context& ctx, const std::string& key, const std::string& reason) {
+    const common::toml_io::KeyInfo& info = ctx.keys[key];
+    const auto at = reason.find(" violates ");
+    throw common::InputError(ctx.file, info.line,
+                          "key '" + key + "' = " + info.text + " violates " +
+                              (at == std::string::npos ? reason : reason.substr(at + 10)));
+}
+
+}  // namespace
+
+TensionConfig load_tension_config(const CubeConfig& config) {
+    using namespace common::toml_io;
+    Context ctx;
+    const toml::table root = parse_toml_file(config.file, ctx);
+    TensionConfig t;
+    t.spec.test = config.test;
+    Section s(ctx, root, "tension");
+    s.real("grip_depth_fraction", t.spec.grip_depth_fraction);
+    s.real("auto_peak_strain", t.auto_peak_strain);
+    s.finish();
+    if (auto why = t.spec.invalid_reason()) {
+        // config.test was validated by load_cube_config: only the grips can be wrong here.
+        if (why->rfind("TensionTestSpec::grip_depth_fraction", 0) != 0) throw common::InputError(ctx.file, 0, *why);
+        reject(ctx, "tension.grip_depth_fraction", *why);
+    }
+    if (ctx.keys["tension.auto_peak_strain"].line > 0 && !(t.auto_peak_strain > 0.0 && t.auto_peak_strain < 0.01))
+        reject(ctx, "tension.auto_peak_strain", "in (0, 0.01)");
+    return t;
+}
+
+double expected_tensile_peak_strain(const MaterialParams& material) {
+    const double strain = kTensilePeakStrainPerBondStrain * material.bond.tensile_strength_mean /
+                          material.bond.effective_modulus;
+    return std::clamp(strain, 1.0e-5, 1.0e-2);
+}
+
+double tension_strain_rate(const CubeConfig& config, const TensionConfig& tension, const Packing& packing) {
+    if (!config.auto_strain_rate) return config.test.loading.strain_rate;
+    const double peak = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain
+                                                       : expected_tensile_peak_strain(config.material);
+    return quasi_static_strain_rate(packing, config.material, peak);
+}
+
+}  // namespace gradem::exp

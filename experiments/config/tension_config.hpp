@@ -1,0 +1,36 @@
+#pragma once
+// The direct-tension test reads the same config file as the compression test (cube_config.hpp:
+// the same specimen, material, loading, gauges and output), plus an optional [tension] table
+// for what only tension has (experiments/README.md lists the keys):
+//   [tension]   grip_depth_fraction, auto_peak_strain
+// Unknown keys, wrong types and out-of-range values throw common::InputError "file:line: key
+// 'tension.x' = v violates rule", like the other tables.
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/tension_test.hpp"
+
+namespace gradem::exp {
+
+struct TensionConfig {
+    TensionTestSpec spec;             ///< config.test plus the grips
+    /// Expected tensile peak strain for strain_rate_per_s = "auto" [-]; 0 (the default): from
+    /// the material, expected_tensile_peak_strain().
+    double auto_peak_strain = 0.0;
+};
+
+/// The tensile peak strain a bonded specimen of this material is expected to reach [-]:
+/// kTensilePeakStrainPerBondStrain × σ̄_c/Ē (the bonds' mean tensile strength over their
+/// modulus). The factor is measured: a parallel-bond cube at the main job's calibrated
+/// parameters (Ē* 7.05 GPa, σ̄_c 15.7 MPa) peaks in direct tension at 1.39e-3 = 0.62 σ̄_c/Ē;
+/// 0.5 keeps the rate on the slow side of the quasi-static rule for such specimens.
+inline constexpr double kTensilePeakStrainPerBondStrain = 0.5;
+double expected_tensile_peak_strain(const MaterialParams& material);
+
+/// The tension test of a loaded config: config.test plus the [tension] table of config.file.
+TensionConfig load_tension_config(const CubeConfig& config);
+
+/// The strain rate [1/s] to pull at: the configured one, or for "auto" the compression test's
+/// rule (quasi_static_strain_rate: 200 wave transits) to the expected tensile peak strain
+/// (tension.auto_peak_strain if set, else expected_tensile_peak_strain(config.material)).
+double tension_strain_rate(const CubeConfig& config, const TensionConfig& tension, const Packing& packing);
+
+}  // namespace gradem::exp
