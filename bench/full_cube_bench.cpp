@@ -9,7 +9,7 @@
 //     radius ratio 3, ~2.5 bonds per grain) whose smallest grain is the real one, so the
 //     automatic time step is close to the real specimen's;
 //   - peak memory per sphere of that World;
-//   - the steps of a whole test: with the "auto" strain rate (experiments/cube_test.cpp) the
+//   - the steps of a whole test: with the "auto" strain rate (experiments/virtual_tests/cube_test.cpp) the
 //     time to the stop is a fixed number of wave transits of the cube, t = transits L / c with
 //     c = sqrt(E*/rho), so steps = transits L / (c dt). `transits_to_stop` is measured on the
 //     default cube (bench/README.md) and passed in.
@@ -19,7 +19,7 @@
 #include <cstdio>
 
 #include "bench/genesis_bench.hpp"
-#include "experiments/grain_sampler.hpp"
+#include "experiments/specimen/grain_sampler.hpp"
 
 namespace gradem::bench {
 namespace {

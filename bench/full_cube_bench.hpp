@@ -3,7 +3,7 @@
 // bench/full_cube_bench.cpp.
 #include <cstdint>
 
-#include "experiments/quick_packing.hpp"
+#include "experiments/specimen/quick_packing.hpp"
 
 namespace gradem::bench {
 

@@ -9,7 +9,7 @@
 
 #include "bench/full_cube_bench.hpp"
 #include "core/parallel.hpp"
-#include "experiments/genesis.hpp"
+#include "experiments/specimen/genesis.hpp"
 
 namespace gradem::bench {
 

@@ -36,8 +36,8 @@
 #include "bench/specimen_bench.hpp"
 #include "core/flat_joint_law.hpp"
 #include "core/world.hpp"
-#include "experiments/platen_compression.hpp"
-#include "experiments/quick_packing.hpp"
+#include "experiments/virtual_tests/platen_compression.hpp"
+#include "experiments/specimen/quick_packing.hpp"
 
 using namespace gradem;
 

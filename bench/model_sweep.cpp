@@ -8,7 +8,7 @@
 //                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension] [--quiet]
 //
 // The base material is the config's [material] with --model and every --set applied (keys and
-// units of the material table, experiments/material_table.hpp; set as the calibration sets them,
+// units of the material table, experiments/config/material_table.hpp; set as the calibration sets them,
 // so a strength keeps its cohesion ratio). Each --sweep key is varied alone around the base (one
 // at a time), every value on every sand and seed; the base point itself is run once. Packings come
 // from the config's packing cache (generated if missing). Run with OMP_NUM_THREADS=1.
@@ -27,11 +27,11 @@
 #include <vector>
 
 #include "bench/bench_args.hpp"
-#include "experiments/cube_config.hpp"
-#include "experiments/cube_test.hpp"
-#include "experiments/material_table.hpp"
-#include "experiments/packing_cache.hpp"
-#include "experiments/tension_config.hpp"
+#include "experiments/config/cube_config.hpp"
+#include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/config/material_table.hpp"
+#include "experiments/specimen/packing_cache.hpp"
+#include "experiments/config/tension_config.hpp"
 
 using namespace gradem;
 
@@ -62,7 +62,7 @@ using bench::split_list;
 
 const exp::MaterialParameter& row(const std::string& key) {
     const exp::MaterialParameter* p = exp::find_material_parameter(key);
-    if (!p) throw bench::UsageError("unknown material key '" + key + "' (see experiments/material_table.cpp)");
+    if (!p) throw bench::UsageError("unknown material key '" + key + "' (see experiments/config/material_table.cpp)");
     return *p;
 }
 

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "calibrate/cube_model.hpp"
-#include "calibrate/ledger.hpp"
-#include "calibrate/mpi_executor.hpp"
-#include "calibrate/run_message.hpp"
+#include "calibrate/execution/ledger.hpp"
+#include "calibrate/execution/mpi_executor.hpp"
+#include "calibrate/execution/run_message.hpp"
 #include "bench/bench_args.hpp"
 #include "common/exit_status.hpp"
 #include "common/hash.hpp"

@@ -7,8 +7,8 @@
 
 #include "bench/genesis_bench.hpp"
 #include "core/flat_joint_law.hpp"
-#include "experiments/cube_specimen.hpp"
-#include "experiments/packing_cache.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
+#include "experiments/specimen/packing_cache.hpp"
 
 namespace gradem::bench {
 namespace {

@@ -3,7 +3,7 @@
 // The specimen is a genesis packing of the study's pre-blended sand (Table 2) under the
 // calibration cube's size rule (0.149 - 0.8 mm), its edge scaled from the 3.5 mm calibration
 // cube (~4350 grains) so that about N grains are sampled, seed 1, in the order genesis gives it
-// (Morton), cached in the packing cache (experiments/packing_cache.hpp). Bonds are installed as
+// (Morton), cached in the packing cache (experiments/specimen/packing_cache.hpp). Bonds are installed as
 // a calibration's cube test installs them (exp::bonded_cube_specimen: the bonding gap as a
 // length, bond_gap_um), then the two platens close at a strain rate of 1/s.
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/world.hpp"
-#include "experiments/genesis.hpp"
+#include "experiments/specimen/genesis.hpp"
 
 namespace gradem::bench {
 
