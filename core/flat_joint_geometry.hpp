@@ -149,8 +149,8 @@ inline GapField gap_field(double gamma, double wy, double wz) {
 /// wrapped into [-π, π]); β = -1: compressed everywhere, β = 4: nowhere.
 struct ArcCrossing {
     double beta = 4.0;
-    bool cut = false;                                ///< crossed at two angles
-    double angle[2] = {}, cos[2] = {}, sin[2] = {};  ///< φ - β, φ + β [rad]; their cos, sin
+    bool cut = false;                 ///< crossed at two angles
+    double angle[2], cos[2], sin[2];  ///< φ - β, φ + β [rad]; their cos, sin (set only when cut)
 };
 /// cos(φ ∓ β) = cos φ c ± sin φ sin β, sin(φ ∓ β) = sin φ c ∓ cos φ sin β (angle addition, no
 /// sin/cos call), sin β = sqrt((1 - c)(1 + c)).
