@@ -17,7 +17,7 @@
 // compressed part is [r0, r1], [r0, L], [L, r1] or empty (L the line), so the piece's region is
 // a difference of two fans from the centre, each a circular sector (arc r) or a triangle (the
 // line between the piece's end rays), whose moments are polynomials of the end points and the
-// sector's angle (area_moments.* below). No quadrature: exact to round-off.
+// sector's angle (detail::add_sector, add_triangle). No quadrature: exact to round-off.
 //
 // Speed: the zero line's direction (one atan2) and each arc's crossings (one acos, the crossing
 // points by angle addition, no sin/cos call) are computed once per joint and step
