@@ -17,7 +17,7 @@
 // breaks in tension if σ_e = F_n,e/A_e >= σ̄_c, else in shear if
 //     τ_e = |F_s,e|/A_e >= c̄ - min(σ_e, σ̄_c) tan φ̄      (σ tension +, so compression adds).
 // Unbonded element (broken, or of a slit or gapped joint): normal stress k̄_n min(g(x), 0)
-// integrated over the element's compressed part (exact radially, Gauss in angle), so a partly
+// integrated over the element's compressed part (closed form, flat_joint_geometry.hpp), so a partly
 // open element carries its share and a closed one its full bending stiffness; shear Coulomb,
 // |F_s,e| <= μ |F_n,e| (μ = FlatJointParams::residual_friction), slip energy counted.
 // Resultant on B about the contact point: F = Σ (F_s,e - F_n,e n), M = Σ (x_e x F_s,e + n x P_e)
@@ -250,8 +250,11 @@ inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& 
     return out;
 }
 
-/// Unbonded element at centroid gap g_e = g_0 + δ_e: no tension, compressed part integrated.
-inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, double kn, double R, double gap) {
+/// Unbonded element at centroid gap g_e = g_0 + δ_e: no tension, compressed part integrated
+/// (γ = g_0 + U_n, the gap at the disc centre [m]; the joint's zero line comes from `line`,
+/// made by the joint's first cut element and reused by the others).
+inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, double kn, double R, double gap,
+                                  double gamma, ZeroLineCache& line) {
     const double spread = R * f.w_norm * g.reach;  // bounds |g(x) - g_e| over the element
     if (gap + spread <= 0.0) return linear_normal(g, f, kn, R, gap);
     NormalLoad out;
@@ -259,8 +262,8 @@ inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame
         out.open = true;
         return out;
     }
-    const double gamma = gap - R * (f.wy * g.y + f.wz * g.z);  // g at the disc centre
-    const CompressedPart c = compressed_part(g, gamma, R * f.wy, R * f.wz);
+    line.prepare(gamma, R * f.wy, R * f.wz);
+    const CompressedPart c = compressed_part(g, line.field, line.crossing(g.ring, g.r0), line.crossing(g.ring + 1, g.r1));
     const double knR2 = kn * R * R;
     out.fn = knR2 * c.force;
     out.p1 = knR2 * R * c.py;
@@ -321,7 +324,7 @@ struct FlatJointLaw {
     static double analytic_ductility(const FlatJointParams& f, double h) { return 0.5 * h * f.residual_friction; }
 
     struct Context {
-        std::vector<FlatElementGeometry> elements;
+        std::span<const FlatElementGeometry> elements;  ///< the layout's table (built once per process)
         double tan_phi = 0.0, friction = 0.5;
         bool track = true;
     };
@@ -331,7 +334,7 @@ struct FlatJointLaw {
 
     static Context context(const auto& p, bool track) {
         const FlatJointParams& own = law_params<FlatJointLaw>(p);
-        return {flat_joint_elements(own.radial_elements, own.angular_elements),
+        return {flat_joint_element_table(own.radial_elements, own.angular_elements),
                 std::tan(p.friction_angle_deg * kPi / 180.0), own.residual_friction, track};
     }
     static std::size_t side_size(const auto& p) {
@@ -369,6 +372,7 @@ struct FlatJointLaw {
         const JointFrame f = carry_frame(side, kin);
         const JointStep js = joint_step(f, side[flat_side::stiffness_scale], k_touching, sec.radius, kin);
         const double g0 = side[flat_side::initial_gap];
+        ZeroLineCache zero_line;  // the unbonded elements' zero line, made when first needed
 
         JointSums sum;
         bool any_bonded = false, all_bonded = true, all_open = true;
@@ -397,7 +401,7 @@ struct FlatJointLaw {
                 }
             }
             if (!bonded) {
-                load = unbonded_normal(g, f, js.kn, js.R, g0 + t.opening);
+                load = unbonded_normal(g, f, js.kn, js.R, g0 + t.opening, g0 + f.normal, zero_line);
                 frictional_cap(c, t.s1, t.s2, old1, old2, t.du1, t.du2, load.fn, t.inv_ksa, !broke_now, r.slip);
             }
             const double energy =
@@ -431,15 +435,7 @@ struct FlatJointLaw {
                 return r;
             }
         }
-        if (!c.track) r.released = 0.0;
-        if (c.track) r.stored = sum.stored;
-        const JointResultant res = joint_resultant(sum, f, n);
-        b.normal_force = sum.fn;
-        b.shear_force = res.shear;
-        b.twist_moment = sum.twist;
-        b.bend_moment = res.bend;
-        r.force_j = res.force;
-        r.moment_j = res.moment;
+        store_resultant(c, b, r, sum, f, n);
         return r;
     }
 
@@ -456,6 +452,20 @@ struct FlatJointLaw {
     }
 
 private:
+    /// The acting joint's results: its energies, the resultant on B (bond record and pair force).
+    static void store_resultant(const Context& c, ParallelBond& b, BondStepResult& r, const flat_detail::JointSums& sum,
+                                const flat_detail::JointFrame& f, const Vec3& n) {
+        if (!c.track) r.released = 0.0;
+        if (c.track) r.stored = sum.stored;
+        const flat_detail::JointResultant res = flat_detail::joint_resultant(sum, f, n);
+        b.normal_force = sum.fn;
+        b.shear_force = res.shear;
+        b.twist_moment = sum.twist;
+        b.bend_moment = res.bend;
+        r.force_j = res.force;
+        r.moment_j = res.moment;
+    }
+
     /// Which way a bonded element fails at mean stresses σ (tension +) and τ² [Pa²], if it does:
     /// tension if σ >= σ̄_c, shear if τ >= c̄ - σ tan φ̄ (σ < σ̄_c here).
     static BondState element_failure(const Context& c, const ParallelBond& b, double sigma, double tau2) {

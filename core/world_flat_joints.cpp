@@ -167,7 +167,7 @@ __attribute__((always_inline)) inline void resultants(JointLanes& L) {
 #endif
 
 GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, double dt,
-                                                              const std::vector<FlatElementGeometry>& elements) {
+                                                              std::span<const FlatElementGeometry> elements) {
     frames(L, dt);
     for (std::size_t e = 0; e < elements.size(); ++e) bonded_element(L, e, elements[e]);
     resultants(L);
@@ -178,6 +178,7 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     const auto& a = contexts.front().elements;
     if (a.size() > kMaxLaneElements) return false;
     for (const auto& c : contexts) {
+        if (c.elements.data() == a.data()) continue;  // the same layout's table
         if (c.elements.size() != a.size()) return false;
         for (std::size_t e = 0; e < a.size(); ++e) {
             const FlatElementGeometry &x = a[e], &y = c.elements[e];
@@ -206,7 +207,7 @@ BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
     std::vector<FlatJointLaw::Context> contexts;  // one per bond family pair
     for (const BondParams& p : pass.family_params) contexts.push_back(FlatJointLaw::context(p, pass.sim.track_energy));
     const bool use_lanes = pass.sim.vectorised_bond_passes && same_elements(contexts);
-    const std::vector<FlatElementGeometry>& elements = contexts.front().elements;
+    const std::span<const FlatElementGeometry> elements = contexts.front().elements;
     const std::size_t n_elements = elements.size();
     const std::size_t stride = pass.stride;
     const bool track = pass.sim.track_energy;
