@@ -9,7 +9,7 @@
 #include <toml++/toml.h>
 
 #include "calibrate/problem.hpp"
-#include "calibrate/study.hpp"
+#include "calibrate/study/study.hpp"
 #include "calibrate/validation.hpp"
 #include "calibrate_fixture.hpp"
 #include "reports/calibrated_config.hpp"
