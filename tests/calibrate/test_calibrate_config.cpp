@@ -127,7 +127,22 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
     TempDir dir("cal-shipped");
     write_lab(dir.path);
     const fs::path configs = fs::path(GRADEM_SOURCE_DIR) / "calibrate" / "configs";
-    for (const char* name : {"joint.toml", "study.toml", "per_sand.toml"}) {
+    // What each shipped config documents: its bond model, cube edge, seeds and free parameters.
+    struct Shipped {
+        const char* name;
+        gradem::BondModel model;
+        double edge;  // [m]
+        std::size_t seeds;
+        std::vector<std::string> free;
+    };
+    const std::vector<Shipped> shipped = {
+        {"joint.toml", gradem::BondModel::flat_joint, 3.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa"}},
+        {"joint_parallel_bond.toml", gradem::BondModel::parallel_bond, 3.5e-3, 3, {"effective_modulus_gpa", "tensile_strength_mpa", "bond_gap_um"}},
+        {"study.toml", gradem::BondModel::parallel_bond, 2.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
+        {"per_sand.toml", gradem::BondModel::parallel_bond, 2.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
+    };
+    for (const Shipped& expected : shipped) {
+        const char* name = expected.name;
         DYNAMIC_SECTION(name) {
             // The same file with its base and lab results made absolute (the bundled lab results
             // exist only after the main job has run).
@@ -143,15 +158,16 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
             const cal::CalibrationProblem p = cal::load_calibration_problem(dir.path / name);
             CHECK(p.sands == std::vector<std::string>{"pre-blended", "Van Buren"});
             CHECK(p.solver.method == cal::Method::scaling);
-            const bool main_job = std::string(name) == "joint.toml";  // 3.5 mm, 3 seeds, strength cv fixed
-            CHECK(p.seeds.size() == (main_job ? 3u : 2u));
-            CHECK(p.base.specimen.genesis.edge == Approx(main_job ? 3.5e-3 : 2.5e-3));
+            CHECK(p.bond_model() == expected.model);
+            CHECK(p.seeds.size() == expected.seeds);
+            CHECK(p.base.specimen.genesis.edge == Approx(expected.edge));
             const cal::ParameterSpace space(p.parameters, p.base.material);
-            // E*, tensile strength, and the shapes: the bonding gap (main job) or cohesion ratio and strength cv
-            CHECK(space.size() == (main_job ? 3u : 4u));
-            bool gap_free = false;
-            for (std::size_t k = 0; k < space.size(); ++k) gap_free = gap_free || space.free(k).name == "bond_gap_um";
-            CHECK(gap_free == main_job);
+            std::vector<std::string> free;
+            for (std::size_t k = 0; k < space.size(); ++k) free.push_back(space.free(k).name);
+            std::sort(free.begin(), free.end());
+            std::vector<std::string> documented = expected.free;
+            std::sort(documented.begin(), documented.end());
+            CHECK(free == documented);
             CHECK(space.index_of(cal::Role::stiffness_scale).has_value());
             CHECK(space.index_of(cal::Role::strength_scale).has_value());
         }
