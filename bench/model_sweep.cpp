@@ -5,7 +5,8 @@
 // one number a shape parameter must move for the strain at peak to be met.
 //
 //   gradem-model-sweep <cube config.toml> [--model M] [--set key=value]...
-//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--tension] [--quiet]
+//                      [--sweep key=v1,v2,...]... [--sands a,b] [--seeds 1,2] [--edge-mm L] [--tension]
+//                      [--quiet]
 //
 // The base material is the config's [material] with --model and every --set applied (keys and
 // units of the material table, experiments/config/material_table.hpp; set as the calibration sets them,
@@ -49,13 +50,14 @@ struct Options {
     std::vector<Sweep> sweeps;
     std::vector<std::string> sands;
     std::vector<std::uint64_t> seeds{1};
+    double edge = 0.0;  // [m] 0: the config's genesis.edge_mm
     bool tension = false;
     bool quiet = false;
 };
 
 constexpr const char* kUsage =
     "usage: gradem-model-sweep <config.toml> [--model M] [--set key=value]... [--sweep key=v1,v2,...]...\n"
-    "                          [--sands a,b] [--seeds 1,2] [--tension] [--quiet]\n";
+    "                          [--sands a,b] [--seeds 1,2] [--edge-mm L] [--tension] [--quiet]\n";
 
 using bench::parse_number;
 using bench::split_list;
@@ -82,6 +84,7 @@ Options parse(int argc, char** argv) {
                         "  --sweep key=v1,v2,... vary one key alone around the base, repeatable\n"
                         "  --sands a,b           sands of the config's dataset (default: the config's sand)\n"
                         "  --seeds 1,2           packing seeds (default 1)\n"
+                        "  --edge-mm L           cube edge [mm] of every packing (default: the config's genesis.edge_mm)\n"
                         "  --tension             also run the direct-tension test of each point\n"
                         "%s"
                         "  -h, --help            show this text\n\n%s",
@@ -103,7 +106,10 @@ Options parse(int argc, char** argv) {
             }
         } else if (a == "--sands") o.sands = split_list(args.value());
         else if (a == "--seeds") o.seeds = bench::parse_number_list<std::uint64_t>(args.value(), a);
-        else if (a == "--tension") o.tension = true;
+        else if (a == "--edge-mm") {
+            o.edge = parse_number(args.value(), a) * 1e-3;
+            if (!(o.edge > 0.0)) throw bench::UsageError("--edge-mm: expected a positive cube edge [mm]");
+        } else if (a == "--tension") o.tension = true;
         else if (a == "--quiet") o.quiet = true;
         else if (o.config.empty() && a.rfind("--", 0) != 0) o.config = a;
         else throw bench::UsageError("unknown argument '" + a + "'");
@@ -182,7 +188,11 @@ int main(int argc, char** argv) {
     return bench::run_main("gradem-model-sweep", [&] {
         Options o = parse(argc, argv);
         if (o.quiet) bench::be_quiet(true);
-        const exp::CubeConfig base = exp::load_cube_config(o.config);
+        exp::CubeConfig base = exp::load_cube_config(o.config);
+        if (o.edge > 0.0) {
+            base.specimen.genesis.edge = o.edge;
+            if (const auto why = base.specimen.invalid_reason()) throw bench::UsageError("--edge-mm: " + *why);
+        }
         if (o.sands.empty()) o.sands = {base.sand};
         exp::MaterialParams material = base.material;
         if (!o.model.empty()) {

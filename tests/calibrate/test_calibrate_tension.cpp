@@ -116,7 +116,7 @@ TEST_CASE("an assumed σc/σt: the target is σc,lab / ratio, met when the simul
     CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("sigc/sigt"));
 }
 
-TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row sets β", "[calibrate][tension]") {
+TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row pulls β as far as its weight says", "[calibrate][tension]") {
     cal::CalibrationProblem p;
     p.tension.source = cal::TensionSource::lab;
     p.targets = {{"a", {10e9, 1e9, 3}, {20e6, 1e6, 3}, {0.003, 1e-4, 3}, {2e6, 1e5, 3}}};
@@ -138,7 +138,15 @@ TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β,
     CHECK(scaled.sands[0].value(cal::Quantity::tension) == Approx(2e6).epsilon(1e-12));
     CHECK(scaled.tension_runs[0].peak_pa == Approx(2.5e6 * 0.8).epsilon(1e-12));
     CHECK(cal::objective(scaled, p) < 1e-24);
+    // With the peak weighted too, σt pulls β between the peak's 1 and its own 0.8 ...
+    p.weights = {1.0, 1.0, 0.0, 1.0};
+    CHECK(cal::best_scales(e, p, true, true).beta == Approx(std::sqrt(0.8)).epsilon(1e-12));
+    // ... and with a tension weight of 0 it does not pull at all: the peak sets β.
+    p.weights = {1.0, 1.0, 0.0, 0.0};
+    CHECK(cal::best_scales(e, p, true, true).beta == Approx(1.0).epsilon(1e-12));
+    CHECK(cal::objective(cal::rescaled(e, 1.7, 1.0), p) < 1e-24);
     // Without the tension target the same outcome says nothing about β.
+    p.weights = {1.0, 0.0, 0.0, 1.0};
     p.tension.source = cal::TensionSource::none;
     CHECK(cal::best_scales(e, p, true, true).beta == 1.0);
 }
