@@ -237,8 +237,9 @@ public:
             const cal::ParameterSpec& p = space_.free(*index);
             if (!(x >= p.lower && x <= p.upper))
                 throw py::value_error("parameter '" + name + "' = " + py::repr(v).cast<std::string>() + " violates in [" +
-                                      common::toml_io::show(p.lower) + ", " + common::toml_io::show(p.upper) + "] " + p.unit() +
-                                      " (its bounds in " + problem_.file.string() + ")");
+                                      common::toml_io::show(p.lower) + ", " + common::toml_io::show(p.upper) + "]" +
+                                      (p.unit() == "-" ? std::string() : " " + std::string(p.unit())) + " (its bounds in " +
+                                      problem_.file.string() + ")");
             values[*index] = x;
         }
         for (std::size_t k = 0; k < values.size(); ++k)
