@@ -115,6 +115,7 @@ void register_errors(py::module_& m);
 void register_config(py::module_& m);
 void register_virtual_tests(py::module_& m);
 void register_calibration(py::module_& m);
+void register_model(py::module_& m);
 void register_lab(py::module_& m);
 
 }  // namespace gradem::py_api

@@ -51,7 +51,7 @@ py::object node_to_python(const toml::node& n) {
     if (n.is_array()) {
         py::list out;
         for (const toml::node& e : *n.as_array()) out.append(node_to_python(e));
-        return std::move(out);
+        return out;
     }
     std::ostringstream os;
     n.visit([&](const auto& v) { os << v; });

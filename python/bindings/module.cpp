@@ -1,5 +1,6 @@
 // The extension module gradem._gradem: the shared machinery of common.hpp and the exceptions;
-// each part registers its functions (config.cpp, virtual_tests.cpp, calibration.cpp, lab.cpp).
+// each part registers its functions (config.cpp, virtual_tests.cpp, calibration.cpp, model.cpp,
+// lab.cpp).
 // The Python package python/gradem/ wraps it.
 #include <pybind11/pybind11.h>
 
@@ -187,5 +188,6 @@ PYBIND11_MODULE(_gradem, m) {
     api::register_config(m);
     api::register_virtual_tests(m);
     api::register_calibration(m);
+    api::register_model(m);
     api::register_lab(m);
 }

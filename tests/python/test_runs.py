@@ -6,6 +6,8 @@ import os
 import subprocess
 import sys
 import textwrap
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -96,6 +98,24 @@ def test_progress_sees_every_point_and_its_exception_stops_the_run(tiny_cube):
 
     with pytest.raises(Stop, match="enough"):
         gradem.compress(cfg, threads=1, progress=stop)
+
+
+def test_a_run_releases_the_gil(tiny_cube):
+    # While a cube test runs on another Python thread, this one keeps running: no long gap.
+    cfg = gradem.CubeConfig.load(tiny_cube)
+    gradem.specimen(cfg)
+    results = []
+    worker = threading.Thread(target=lambda: results.append(gradem.compress(cfg, threads=1)))
+    start = last = time.monotonic()
+    gap = 0.0
+    worker.start()
+    while worker.is_alive():
+        now = time.monotonic()
+        gap, last = max(gap, now - last), now
+        time.sleep(0.001)
+    worker.join()
+    assert results and results[0].macro["run"]["wall_seconds"] > 0.3
+    assert gap < 0.25 < last - start, (gap, last - start)
 
 
 def test_ctrl_c_stops_a_run_and_the_module_goes_on(tmp_path):
