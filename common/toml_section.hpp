@@ -47,6 +47,7 @@ struct KeyInfo {
     int line = 0;
     std::string text;
     bool converted = false;  ///< the struct holds the value in other units (SI, std from cv)
+    bool path = false;       ///< a path, relative to the config file's folder unless absolute
 };
 
 struct Context {
@@ -111,6 +112,7 @@ public:
     void path(const char* key, fs::path& v) {
         std::string s;
         text(key, s);
+        ctx_.keys[full(key)].path = true;
         if (!s.empty()) v = (ctx_.dir / fs::path(s)).lexically_normal();
     }
 

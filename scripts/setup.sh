@@ -9,6 +9,7 @@ packages=(
   libtomlplusplus-dev nlohmann-json3-dev libsqlite3-dev libcli11-dev
   clang
   python3-matplotlib chromium fonts-dejavu-core
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy
   libopenmpi-dev openmpi-bin
 )
 

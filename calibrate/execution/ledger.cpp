@@ -276,4 +276,64 @@ std::vector<RunCost> read_run_costs(const fs::path& ledger_file) {
     return out;
 }
 
+LedgerContents read_ledger(const fs::path& ledger_file) {
+    std::error_code ec;
+    if (!fs::exists(ledger_file, ec)) throw LedgerError(ledger_file.string() + ": ledger not found");
+    roll_back_interrupted_commit(ledger_file);
+    sqlite3* db = nullptr;
+    if (sqlite3_open_v2(ledger_file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+        sqlite3_close(db);
+        throw LedgerError(ledger_file.string() + ": cannot open the ledger read-only");
+    }
+    LedgerContents out;
+    try {
+        {
+            Statement s(db, "SELECT key, value FROM meta ORDER BY key", ledger_file);
+            while (s.step() == SQLITE_ROW) out.meta.emplace_back(s.column_text(0), s.column_text(1));
+        }
+        bool has_rank = false;  // schema 1 has no rank and host
+        {
+            Statement s(db, "SELECT name FROM pragma_table_info('runs')", ledger_file);
+            while (s.step() == SQLITE_ROW) has_rank = has_rank || s.column_text(0) == "rank";
+        }
+        const std::string sql = std::string(
+                                    "SELECT run_key, sand, seed, parameters, material, status, reason, modulus_pa, peak_pa,"
+                                    " strain_at_peak, poisson, particles, bonds, steps, wall_seconds, curve, code_version,"
+                                    " finished_utc, sequence") +
+                                (has_rank ? ", rank, host" : "") + " FROM runs ORDER BY sequence, rowid";
+        Statement s(db, sql.c_str(), ledger_file);
+        while (s.step() == SQLITE_ROW) {
+            LedgerRun r;
+            r.run_key = s.column_text(0);
+            r.sand = s.column_text(1);
+            r.seed = static_cast<std::uint64_t>(sqlite3_column_int64(s.get(), 2));
+            r.parameters = s.column_text(3);
+            r.material = s.column_text(4);
+            RunOutcome& o = r.outcome;
+            o.status = parse_enum<OutcomeStatus>(s.column_text(5)).value_or(OutcomeStatus::failed);
+            o.reason = s.column_text(6);
+            o.modulus_pa = s.column_real(7);
+            o.peak_pa = s.column_real(8);
+            o.strain_at_peak = s.column_real(9);
+            o.poisson = s.column_real(10);
+            o.particles = sqlite3_column_int64(s.get(), 11);
+            o.bonds = sqlite3_column_int64(s.get(), 12);
+            o.steps = sqlite3_column_int64(s.get(), 13);
+            o.wall_seconds = s.column_real(14);
+            parse_curve(s.column_text(15), o);
+            r.code_version = s.column_text(16);
+            r.finished_utc = s.column_text(17);
+            r.sequence = sqlite3_column_int64(s.get(), 18);
+            if (has_rank && sqlite3_column_type(s.get(), 19) != SQLITE_NULL) r.rank = sqlite3_column_int(s.get(), 19);
+            if (has_rank) r.host = s.column_text(20);
+            out.runs.push_back(std::move(r));
+        }
+    } catch (...) {
+        sqlite3_close(db);
+        throw;
+    }
+    sqlite3_close(db);
+    return out;
+}
+
 }  // namespace gradem::cal

@@ -23,6 +23,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibrate/cube_model.hpp"
@@ -55,6 +56,31 @@ struct RunCost {
 /// Every run of status ok in a ledger file, read-only, in the order they were recorded; throws
 /// LedgerError naming the file when it cannot be read as a ledger.
 std::vector<RunCost> read_run_costs(const std::filesystem::path& ledger_file);
+
+/// One row of a ledger as recorded: what `read_ledger` returns (the Python module's
+/// gradem.Ledger). The outcome's curve is the thinned gauge-strain curve kept with the run.
+struct LedgerRun {
+    std::string run_key, sand;
+    std::uint64_t seed = 0;
+    std::string parameters;  ///< JSON object, config units
+    std::string material;    ///< the material's exact key (calibrate/cube_model.hpp material_key)
+    RunOutcome outcome;
+    std::string code_version, finished_utc;
+    std::int64_t sequence = 0;
+    int rank = -1;           ///< -1: not recorded (a schema-1 row)
+    std::string host;
+};
+
+/// A whole ledger, read-only: its meta table (problem_fingerprint, problem, created,
+/// code_version, schema_version) and every run in the order recorded.
+struct LedgerContents {
+    std::vector<std::pair<std::string, std::string>> meta;
+    std::vector<LedgerRun> runs;
+};
+
+/// Reads a ledger file read-only; throws LedgerError naming the file when it cannot be read as
+/// a ledger (missing, not SQLite, no runs table).
+LedgerContents read_ledger(const std::filesystem::path& ledger_file);
 
 class Ledger {
 public:

@@ -1,4 +1,5 @@
 #include "experiments/config/cube_config.hpp"
+#include "experiments/config/cube_config_source.hpp"
 
 #include <bit>
 #include <limits>
@@ -26,6 +27,8 @@ using common::InputError;
 using namespace common::toml_io;
 
 constexpr double kMm = 1.0e-3, kMpa = 1.0e6, kGpa = 1.0e9;  // display unit -> SI
+
+CubeConfig read_cube_config(Context& ctx, const toml::table& root, const fs::path& toml_file);
 
 const std::vector<std::string> kTables = {"specimen", "size_rule", "genesis", "material", "test", "output",
                                           "tension", "mix", "paste"};  // [tension]: tension_config.hpp; [mix], [paste]: paste_config.hpp
@@ -229,6 +232,21 @@ void check(const Context& ctx, const std::optional<std::string>& reason) {
 CubeConfig load_cube_config(const fs::path& toml_file) {
     Context ctx;
     const toml::table root = parse_toml_file(toml_file, ctx);
+    return read_cube_config(ctx, root, toml_file);
+}
+
+CubeConfig load_cube_config(const toml::table& root, const fs::path& toml_file, std::map<std::string, KeyInfo>* keys) {
+    Context ctx;
+    ctx.file = toml_file.string();
+    ctx.dir = fs::absolute(toml_file).parent_path();
+    CubeConfig c = read_cube_config(ctx, root, toml_file);
+    if (keys) *keys = ctx.keys;
+    return c;
+}
+
+namespace {
+
+CubeConfig read_cube_config(Context& ctx, const toml::table& root, const fs::path& toml_file) {
     CubeConfig c;
     c.file = toml_file;
     check_tables(ctx, root, kTables);
@@ -244,6 +262,8 @@ CubeConfig load_cube_config(const fs::path& toml_file) {
     check(ctx, c.test.invalid_reason());
     return c;
 }
+
+}  // namespace
 
 lab::GradationCurve load_gradation(const CubeConfig& c) {
     const fs::path& source = c.sieve_csv.empty() ? c.dataset : c.sieve_csv;

@@ -1,4 +1,5 @@
 #include "experiments/config/tension_config.hpp"
+#include "experiments/config/cube_config_source.hpp"
 
 #include <algorithm>
 #include <string>
@@ -19,12 +20,30 @@ namespace {
                               (at == std::string::npos ? reason : reason.substr(at + 10)));
 }
 
+TensionConfig read_tension_config(common::toml_io::Context& ctx, const toml::table& root, const CubeConfig& config);
+
 }  // namespace
 
 TensionConfig load_tension_config(const CubeConfig& config) {
+    common::toml_io::Context ctx;
+    const toml::table root = common::toml_io::parse_toml_file(config.file, ctx);
+    return read_tension_config(ctx, root, config);
+}
+
+TensionConfig load_tension_config(const CubeConfig& config, const toml::table& root,
+                                  std::map<std::string, common::toml_io::KeyInfo>* keys) {
+    common::toml_io::Context ctx;
+    ctx.file = config.file.string();
+    ctx.dir = std::filesystem::absolute(config.file).parent_path();
+    TensionConfig t = read_tension_config(ctx, root, config);
+    if (keys) *keys = ctx.keys;
+    return t;
+}
+
+namespace {
+
+TensionConfig read_tension_config(common::toml_io::Context& ctx, const toml::table& root, const CubeConfig& config) {
     using namespace common::toml_io;
-    Context ctx;
-    const toml::table root = parse_toml_file(config.file, ctx);
     TensionConfig t;
     t.spec.test = config.test;
     Section s(ctx, root, "tension");
@@ -40,6 +59,8 @@ TensionConfig load_tension_config(const CubeConfig& config) {
         reject(ctx, "tension.auto_peak_strain", "in (0, 0.01)");
     return t;
 }
+
+}  // namespace
 
 double expected_tensile_peak_strain(const MaterialParams& material) {
     const double strain = kTensilePeakStrainPerBondStrain * material.bond.tensile_strength_mean /
