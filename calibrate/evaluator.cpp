@@ -97,6 +97,14 @@ SandOutcome Evaluator::summarise(std::size_t sand, const std::vector<RunOutcome>
     return s;
 }
 
+std::optional<RunOutcome> Evaluator::served_outcome(const std::string& key) const {
+    std::optional<RunOutcome> found = ledger_.find(key);
+    // A run that timed out under a shorter limit than today's runs again (and replaces its
+    // row): it would not time out now. One that ran as long as today's limit is served.
+    if (found && found->status == OutcomeStatus::timeout && found->wall_seconds < problem_.timeout_s) return std::nullopt;
+    return found;
+}
+
 std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double>>& points,
                                             const std::vector<std::size_t>& sands, const std::string& label) {
     const int needed = runs_needed(points, sands);
@@ -123,7 +131,7 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
     std::vector<std::size_t> queue;
     std::set<std::string> queued;
     for (std::size_t j = 0; j < jobs.size(); ++j) {
-        if (auto found = ledger_.find(jobs[j].key)) {
+        if (auto found = served_outcome(jobs[j].key)) {
             jobs[j].outcome = *found;
             jobs[j].done = true;
             if (used_.insert(jobs[j].key).second) ++served_;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -103,6 +104,8 @@ private:
     /// The tests each (point, sand, seed) runs: the primary one, then its tension companion.
     [[nodiscard]] const std::vector<CubeTest>& tests() const { return tests_; }
     std::string run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed, CubeTest test) const;
+    /// The ledger's outcome of `key`, unless it is a timeout shorter than problem.timeout_s.
+    std::optional<RunOutcome> served_outcome(const std::string& key) const;
     std::string parameters_json(const std::vector<double>& values) const;
     SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs, const std::vector<RunOutcome>& tension_runs) const;
     void report(int evaluations);

@@ -13,8 +13,10 @@
 #include <sstream>
 #include <thread>
 
+#include "calibrate/evaluator.hpp"
 #include "calibrate/execution/ledger.hpp"
 #include "calibrate/objective.hpp"
+#include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate_fixture.hpp"
 #include "experiments/config/cube_config.hpp"
@@ -165,6 +167,14 @@ std::int64_t ledger_rows(const fs::path& path) {
     return n;
 }
 
+bool ledger_exec(const fs::path& path, const char* sql) {
+    sqlite3* db = nullptr;
+    bool ok = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK &&
+              sqlite3_exec(db, sql, nullptr, nullptr, nullptr) == SQLITE_OK;
+    sqlite3_close(db);
+    return ok;
+}
+
 }  // namespace
 
 TEST_CASE("kill -9 in the middle: the resumed calibration repeats no run and reaches the same answer", "[calibrate]") {
@@ -205,6 +215,42 @@ TEST_CASE("kill -9 in the middle: the resumed calibration repeats no run and rea
     CHECK(resumed.runs_executed == uninterrupted.runs_used - recorded);
     CHECK(resumed.runs_used == uninterrupted.runs_used);
     CHECK(best_of(resumed) == best_of(uninterrupted));
+}
+
+TEST_CASE("a run recorded as timed out runs again once the timeout exceeds its recorded wall time", "[calibrate]") {
+    TempDir dir("cal-timeout-rerun");
+    auto model = cal::make_analytic_model(2, 0.001);
+    cal::CalibrationProblem problem = cal::load_calibration_problem(twin_problem(dir.path, *model, "scaling", 60));
+    const cal::ParameterSpace space(problem.parameters, problem.base.material);
+    const std::vector<double> x = space.start();  // config units
+    const std::vector<std::size_t> sands = {0, 1};
+    const fs::path path = dir.path / "timeouts.sqlite";
+    int runs = 0;
+    {
+        cal::Ledger ledger(path, "timeouts", "timeouts");
+        cal::Evaluator evaluator(problem, space, *model, ledger);
+        REQUIRE_FALSE(evaluator.evaluate(x, sands, "start").failed);
+        runs = evaluator.runs_executed();
+    }
+    REQUIRE(runs == 2 * static_cast<int>(problem.seeds.size()));
+    // Every run recorded as a timeout after 5 s.
+    REQUIRE(ledger_exec(path, "UPDATE runs SET status = 'timeout', wall_seconds = 5"));
+    cal::Ledger ledger(path, "timeouts", "timeouts");
+    SECTION("a limit no longer than the recorded wall: served as the timeout it was") {
+        problem.timeout_s = 5.0;
+        cal::Evaluator evaluator(problem, space, *model, ledger);
+        CHECK(evaluator.evaluate(x, sands, "again").failed);
+        CHECK(evaluator.runs_from_ledger() == runs);
+        CHECK(evaluator.runs_executed() == 0);
+    }
+    SECTION("a longer limit: run again, and the row replaced") {
+        problem.timeout_s = 600.0;
+        cal::Evaluator evaluator(problem, space, *model, ledger);
+        CHECK_FALSE(evaluator.evaluate(x, sands, "again").failed);
+        CHECK(evaluator.runs_executed() == runs);
+        CHECK(evaluator.runs_from_ledger() == 0);
+        CHECK(ledger_rows(path) == runs);
+    }
 }
 
 TEST_CASE("a diverging evaluation is a penalty value: the calibration goes on", "[calibrate]") {
