@@ -137,6 +137,24 @@ void parse_curve(const std::string& text, RunOutcome& o) {
     }
 }
 
+/// The outcome columns status, reason, modulus_pa, peak_pa, strain_at_peak, poisson, particles,
+/// bonds, steps, wall_seconds, curve of the row, starting at column `first`.
+RunOutcome outcome_from_columns(Statement& s, int first) {
+    RunOutcome o;
+    o.status = parse_enum<OutcomeStatus>(s.column_text(first)).value_or(OutcomeStatus::failed);
+    o.reason = s.column_text(first + 1);
+    o.modulus_pa = s.column_real(first + 2);
+    o.peak_pa = s.column_real(first + 3);
+    o.strain_at_peak = s.column_real(first + 4);
+    o.poisson = s.column_real(first + 5);
+    o.particles = sqlite3_column_int64(s.get(), first + 6);
+    o.bonds = sqlite3_column_int64(s.get(), first + 7);
+    o.steps = sqlite3_column_int64(s.get(), first + 8);
+    o.wall_seconds = s.column_real(first + 9);
+    parse_curve(s.column_text(first + 10), o);
+    return o;
+}
+
 }  // namespace
 
 Ledger::Ledger(const fs::path& path, const std::string& fingerprint, const std::string& description) : path_(path) {
@@ -201,19 +219,7 @@ std::optional<RunOutcome> Ledger::find(const std::string& run_key) const {
                 path_);
     s.text(1, run_key);
     if (s.step() != SQLITE_ROW) return std::nullopt;
-    RunOutcome o;
-    o.status = parse_enum<OutcomeStatus>(s.column_text(0)).value_or(OutcomeStatus::failed);
-    o.reason = s.column_text(1);
-    o.modulus_pa = s.column_real(2);
-    o.peak_pa = s.column_real(3);
-    o.strain_at_peak = s.column_real(4);
-    o.poisson = s.column_real(5);
-    o.particles = sqlite3_column_int64(s.get(), 6);
-    o.bonds = sqlite3_column_int64(s.get(), 7);
-    o.steps = sqlite3_column_int64(s.get(), 8);
-    o.wall_seconds = s.column_real(9);
-    parse_curve(s.column_text(10), o);
-    return o;
+    return outcome_from_columns(s, 0);
 }
 
 void Ledger::record(const std::string& run_key, const std::string& sand, std::uint64_t seed,
@@ -309,18 +315,7 @@ LedgerContents read_ledger(const fs::path& ledger_file) {
             r.seed = static_cast<std::uint64_t>(sqlite3_column_int64(s.get(), 2));
             r.parameters = s.column_text(3);
             r.material = s.column_text(4);
-            RunOutcome& o = r.outcome;
-            o.status = parse_enum<OutcomeStatus>(s.column_text(5)).value_or(OutcomeStatus::failed);
-            o.reason = s.column_text(6);
-            o.modulus_pa = s.column_real(7);
-            o.peak_pa = s.column_real(8);
-            o.strain_at_peak = s.column_real(9);
-            o.poisson = s.column_real(10);
-            o.particles = sqlite3_column_int64(s.get(), 11);
-            o.bonds = sqlite3_column_int64(s.get(), 12);
-            o.steps = sqlite3_column_int64(s.get(), 13);
-            o.wall_seconds = s.column_real(14);
-            parse_curve(s.column_text(15), o);
+            r.outcome = outcome_from_columns(s, 5);
             r.code_version = s.column_text(16);
             r.finished_utc = s.column_text(17);
             r.sequence = sqlite3_column_int64(s.get(), 18);
