@@ -406,7 +406,9 @@ TEST_CASE("a worker rank that stops answering is given up after timeout + grace:
           "[calibrate][mpi]") {
     TempDir dir("cal-mpi-hang");
     const fs::path cfg = analytic_problem(dir.path, 40, "[run]\ntimeout_s = 3\n");
-    const Finished f = run(mpirun(3, {GRADEM_MPI_DRIVER, cfg.string(), "--hang-rank", "2", "--hang-after", "3"}), dir.path, 60);
+    // 180 s: Open MPI's teardown after MPI_Abort of a job with a hung rank took over a minute on
+    // a 2-core machine; a job that never ends still fails here.
+    const Finished f = run(mpirun(3, {GRADEM_MPI_DRIVER, cfg.string(), "--hang-rank", "2", "--hang-after", "3"}), dir.path, 180);
     INFO(f.output);
     CHECK_FALSE(f.timed_out);
     CHECK(f.exit_code != 0);  // a lost rank cannot finalize: the job ends with MPI_Abort...
