@@ -1,7 +1,8 @@
-// `gradem study <study.toml> [--out DIR] [--workers N]`: runs a parameter study
-// (calibrate/study/study_config.hpp lists the kinds) and writes study.json, study.md and runs.csv
+// `gradem study <study.toml> [--out DIR] [--workers N] [--plan]`: runs a parameter study
+// (calibrate/study/study_kind.hpp lists the kinds) and writes study.json, study.md and runs.csv
 // into its output folder, then report.html (reports/html/study_report.py). Milestones go to
-// stderr, the answer and the report path to stdout.
+// stderr, the answer and the report path to stdout. --plan prints the cost
+// (calibrate/study/study_plan.hpp) and stops.
 // Under a launcher (mpirun -np N gradem study ..., GRADEM_MPI builds) its cube tests run on that
 // job's executor, as for gradem calibrate (calibrate/execution/launch.hpp,
 // calibrate/study/study_models.hpp); the answer is the same as with threads.
@@ -17,6 +18,7 @@
 #include "calibrate/execution/launch.hpp"
 #include "calibrate/study/study.hpp"
 #include "calibrate/study/study_models.hpp"
+#include "calibrate/study/study_plan.hpp"
 #include "common/text_file.hpp"
 #include "reports/html_report.hpp"
 #include "reports/study_report.hpp"
@@ -27,6 +29,7 @@ namespace {
 struct StudyOptions {
     std::string file, out;
     int workers = 0;
+    bool plan = false;
 };
 
 cal::StudyConfig load_config(const StudyOptions& o) {
@@ -57,6 +60,16 @@ int study_and_report(const cal::StudyConfig& config, const cal::StudyExecution* 
     return common::exit_success;
 }
 
+/// --plan: the cost of the study, on stdout (JSON with --json); nothing is run or written.
+int print_plan(const cal::StudyConfig& config) {
+    const Console& con = console();
+    if (!con.json()) std::fprintf(con.notes(), "study: planning (the kind's cases on the stand-in, engine timing on the specimens)\n");
+    const cal::StudyPlan plan = cal::plan_study(config);
+    if (con.json()) Console::print_json(cal::study_plan_json(plan));
+    else std::fprintf(con.text(), "%s", cal::study_plan_text(plan).c_str());
+    return common::exit_success;
+}
+
 class StudyCommand final : public Command {
 public:
     void declare(CLI::App& app) override {
@@ -65,6 +78,9 @@ public:
             ->type_name("study.toml");
         app.add_option("--out", o_.out, "result folder (default: the study's output.dir)")->type_name("DIR");
         app.add_option("--workers", o_.workers, "concurrent cube tests, one thread each, 1 to 64 (overrides run.workers)")->check(CLI::Range(1, 64))->type_name("N");
+        app.add_flag("--plan", o_.plan,
+                     "print the cases, runs, particle-steps and estimated wall time (a second of engine timing per "
+                     "case) and stop; genesis and runs are not started");
     }
     int run() override;
 
@@ -93,6 +109,7 @@ int StudyCommand::run() {
     };
     if (const auto status = cal::run_on_launched_executor(make_job, study)) return *status;
     config = load_config(o);
+    if (o.plan) return print_plan(config);
     inputs_checked();
     return study_and_report(config, nullptr);
 }

@@ -30,15 +30,8 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// One specimen set: the fit's (problem.base, problem.seeds), the scale-up's or the validation's.
-struct PlannedSet {
-    std::string name;
-    exp::CubeConfig base;
-    std::vector<std::uint64_t> seeds;
-};
-
-std::vector<PlannedSet> specimen_sets(const CalibrationProblem& problem) {
-    std::vector<PlannedSet> sets{{"fit", problem.base, problem.seeds}};
+std::vector<PlannedSpecimens> specimen_sets(const CalibrationProblem& problem) {
+    std::vector<PlannedSpecimens> sets{{"fit", problem.base, problem.seeds}};
     if (problem.scale_up.enabled()) sets.push_back({"scale-up", scale_up_problem(problem).base, problem.scale_up.seeds});
     if (problem.validation.enabled()) {
         const CalibrationProblem v = validation_problem(problem);
@@ -142,18 +135,30 @@ int fitted_runs_of(const CalibrationProblem& problem, const ExpectedRuns& e, std
     return std::max(0, e.fitted - prediction);
 }
 
-RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSet& set, std::size_t s, const ExpectedRuns& e,
+/// The runs of sand s on a calibration's set, from the stand-in's path.
+RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSpecimens& set, std::size_t s, const ExpectedRuns& e,
                       const exp::MaterialParams& start, double probe_seconds, std::vector<SpecimenPlan>& specimens) {
+    const int sands = static_cast<int>(problem.sands.size());
+    const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
+    const int compression = problem.tension.fitted() ? per_set / 2 : per_set;
+    return plan_runs(problem, set, s, start, {compression, per_set - compression}, probe_seconds, specimens);
+}
+
+}  // namespace
+
+RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens& set, std::size_t s,
+                      const exp::MaterialParams& material, RunCounts counts, double probe_seconds,
+                      std::vector<SpecimenPlan>& specimens) {
     exp::CubeConfig config = set.base;
     config.sand = problem.sands[s];
-    config.material = start;
+    config.material = material;
     const lab::GradationCurve curve = exp::load_gradation(config);
     RunCostPlan cost{.sand = problem.sands[s], .set = set.name};
     std::optional<exp::Packing> timed;
     for (std::uint64_t seed : set.seeds) {
         exp::SpecimenSpec spec = config.specimen;
         spec.seed = seed;
-        SpecimenPlan sp{.sand = cost.sand, .set = set.name, .seed = seed};
+        SpecimenPlan sp{.sand = cost.sand, .set = set.name, .seed = seed, .packing_key = exp::packing_key(curve, spec)};
         if (auto p = cached_packing(curve, spec, config.cache_dir)) {
             sp.cached = true;
             sp.particles = static_cast<std::int64_t>(p->radius.size());
@@ -172,39 +177,46 @@ RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSet& set, 
         cost.particles += static_cast<double>(sp.particles) / static_cast<double>(set.seeds.size());
         specimens.push_back(sp);
     }
-    const Probe probe = probe_engine(*timed, start, config.test, probe_seconds);
+    const Probe probe = probe_engine(*timed, material, config.test, probe_seconds);
     cost.time_step_s = probe.time_step;
     cost.seconds_per_particle_step = probe.seconds_per_particle_step;
     cost.settle_steps = probe.settle_steps;
     const exp::PlatenTestSpec& l = config.test.loading;
-    const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, start) : l.strain_rate;
+    const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, material) : l.strain_rate;
     const double end = kEndOverPeakStrain * expected_peak_strain(problem, problem.targets[s]);
     cost.compression_steps = probe.settle_steps + loading_steps(end, l.ramp_strain, rate, probe.time_step);
-    const int sands = static_cast<int>(problem.sands.size());
-    const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
-    cost.compression_runs = problem.tension.fitted() ? per_set / 2 : per_set;
-    if (problem.tension.fitted()) {
+    cost.compression_runs = counts.compression;
+    if (counts.tension > 0) {
         const exp::TensionConfig tension = exp::load_tension_config(config);
-        const double expected = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain : exp::expected_tensile_peak_strain(start);
+        const double expected = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain : exp::expected_tensile_peak_strain(material);
         const double t_rate = exp::tension_strain_rate(config, tension, *timed);
         cost.tension_steps = probe.settle_steps + loading_steps(kTensionEndOverExpected * expected, l.ramp_strain, t_rate, probe.time_step);
-        cost.tension_runs = per_set - cost.compression_runs;
+        cost.tension_runs = counts.tension;
     }
     return cost;
 }
 
-double genesis_seconds_bound(const CalibrationPlan& plan) {
-    double s = 0.0;
-    for (const SpecimenPlan& sp : plan.specimens) {
-        if (sp.cached) continue;
-        for (const RunCostPlan& r : plan.runs)
-            if (r.sand == sp.sand && r.set == sp.set)
-                s += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
+PlanTotals plan_totals(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, int parallel) {
+    PlanTotals t;
+    for (const RunCostPlan& r : runs) {
+        t.run_wall_s += r.seconds();
+        t.particle_steps += r.particles * (r.compression_runs * r.compression_steps + r.tension_runs * r.tension_steps);
     }
-    return s / std::max(1, std::min(plan.workers, plan.cores));
+    std::vector<std::uint64_t> made;
+    for (const SpecimenPlan& sp : specimens) {
+        if (sp.cached || std::find(made.begin(), made.end(), sp.packing_key) != made.end()) continue;
+        made.push_back(sp.packing_key);
+        for (const RunCostPlan& r : runs)
+            if (r.sand == sp.sand && r.set == sp.set) {
+                t.genesis_wall_max_s += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
+                break;
+            }
+    }
+    const int p = std::max(1, parallel);
+    t.run_wall_s /= p;
+    t.genesis_wall_max_s /= p;
+    return t;
 }
-
-}  // namespace
 
 double RunCostPlan::seconds() const {
     return particles * seconds_per_particle_step * (compression_runs * compression_steps + tension_runs * tension_steps);
@@ -237,16 +249,13 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     }
     const ParameterSpace space(problem.parameters, problem.base.material);
     const exp::MaterialParams start = space.material(space.start());
-    for (const PlannedSet& set : specimen_sets(problem))
+    for (const PlannedSpecimens& set : specimen_sets(problem))
         for (std::size_t s = 0; s < problem.sands.size(); ++s)
             plan.runs.push_back(plan_sand(problem, set, s, e, start, probe_seconds, plan.specimens));
-    double seconds = 0.0;
-    for (const RunCostPlan& r : plan.runs) {
-        seconds += r.seconds();
-        plan.run_particle_steps += r.particles * (r.compression_runs * r.compression_steps + r.tension_runs * r.tension_steps);
-    }
-    plan.run_wall_s = seconds / std::max(1, std::min(plan.workers, plan.cores));
-    plan.genesis_wall_max_s = genesis_seconds_bound(plan);
+    const PlanTotals totals = plan_totals(plan.specimens, plan.runs, std::min(plan.workers, plan.cores));
+    plan.run_particle_steps = totals.particle_steps;
+    plan.run_wall_s = totals.run_wall_s;
+    plan.genesis_wall_max_s = totals.genesis_wall_max_s;
     std::ostringstream a;
     a << "the runs follow the solver's path on the analytic stand-in (" << e.fitted << " of the budget's " << plan.budget
       << "); a DEM path may stop earlier or use the whole budget";
@@ -259,6 +268,47 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     return plan;
 }
 
+std::string cost_text(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, const PlanTotals& totals,
+                      int workers, int cores) {
+    std::ostringstream o;
+    for (const SpecimenPlan& s : specimens)
+        o << "specimen " << s.sand << " (" << s.set << "), seed " << s.seed << ": " << s.particles << " grains"
+          << (s.cached ? " (cached)" : " (genesis first, at most " + std::to_string(s.genesis_max_steps) + " steps)") << "\n";
+    for (const RunCostPlan& r : runs) {
+        o << "run " << r.sand << " (" << r.set << "): " << r.compression_runs << " compression x "
+          << static_cast<long long>(std::llround(r.compression_steps)) << " steps";
+        if (r.tension_runs) o << ", " << r.tension_runs << " tension x " << static_cast<long long>(std::llround(r.tension_steps)) << " steps";
+        o << "; time step " << r.time_step_s << " s, " << r.seconds_per_particle_step * 1e9 << " ns per particle-step"
+          << (r.timed_on_packing ? "" : " (timed on a quick packing: genesis has not run)") << "\n";
+    }
+    o << "particle-steps: " << totals.particle_steps << "\n";
+    o << "estimated wall time: " << common::clock_text(totals.run_wall_s) << " on " << std::min(workers, cores) << " of " << workers
+      << " workers (" << cores << " cores)";
+    if (totals.genesis_wall_max_s > 0.0) o << ", plus genesis at most " << common::clock_text(totals.genesis_wall_max_s);
+    o << "\n";
+    return o.str();
+}
+
+void add_cost_json(nlohmann::ordered_json& j, const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs) {
+    j["specimens"] = nlohmann::ordered_json::array();
+    j["runs"] = nlohmann::ordered_json::array();
+    for (const SpecimenPlan& s : specimens)
+        j["specimens"].push_back({{"sand", s.sand}, {"set", s.set}, {"seed", s.seed}, {"particles", s.particles},
+                                  {"cached", s.cached}, {"genesis_max_steps", s.genesis_max_steps}});
+    for (const RunCostPlan& r : runs)
+        j["runs"].push_back({{"sand", r.sand},
+                             {"set", r.set},
+                             {"particles", r.particles},
+                             {"time_step_s", r.time_step_s},
+                             {"seconds_per_particle_step", r.seconds_per_particle_step},
+                             {"settle_steps", r.settle_steps},
+                             {"compression_runs", r.compression_runs},
+                             {"compression_steps", r.compression_steps},
+                             {"tension_runs", r.tension_runs},
+                             {"tension_steps", r.tension_steps},
+                             {"timed_on_packing", r.timed_on_packing}});
+}
+
 std::string plan_text(const CalibrationPlan& plan) {
     std::ostringstream o;
     o << "runs: " << plan.expected_runs << " expected of a budget of " << plan.budget << " (" << plan.expected_evaluations
@@ -266,21 +316,7 @@ std::string plan_text(const CalibrationPlan& plan) {
     if (plan.scale_up_runs) o << ", then " << plan.scale_up_runs << " scale-up runs";
     if (plan.validation_runs) o << ", then " << plan.validation_runs << " validation runs";
     o << "\n";
-    for (const SpecimenPlan& s : plan.specimens)
-        o << "specimen " << s.sand << " (" << s.set << "), seed " << s.seed << ": " << s.particles << " grains"
-          << (s.cached ? " (cached)" : " (genesis first, at most " + std::to_string(s.genesis_max_steps) + " steps)") << "\n";
-    for (const RunCostPlan& r : plan.runs) {
-        o << "run " << r.sand << " (" << r.set << "): " << r.compression_runs << " compression x "
-          << static_cast<long long>(std::llround(r.compression_steps)) << " steps";
-        if (r.tension_runs) o << ", " << r.tension_runs << " tension x " << static_cast<long long>(std::llround(r.tension_steps)) << " steps";
-        o << "; time step " << r.time_step_s << " s, " << r.seconds_per_particle_step * 1e9 << " ns per particle-step"
-          << (r.timed_on_packing ? "" : " (timed on a quick packing: genesis has not run)") << "\n";
-    }
-    o << "particle-steps: " << plan.run_particle_steps << "\n";
-    o << "estimated wall time: " << common::clock_text(plan.run_wall_s) << " on " << std::min(plan.workers, plan.cores)
-      << " of " << plan.workers << " workers (" << plan.cores << " cores)";
-    if (plan.genesis_wall_max_s > 0.0) o << ", plus genesis at most " << common::clock_text(plan.genesis_wall_max_s);
-    o << "\n";
+    o << cost_text(plan.specimens, plan.runs, {plan.run_particle_steps, plan.run_wall_s, plan.genesis_wall_max_s}, plan.workers, plan.cores);
     for (const std::string& a : plan.assumptions) o << "assumed: " << a << "\n";
     return o.str();
 }
@@ -296,25 +332,9 @@ std::string plan_json(const CalibrationPlan& plan) {
                              {"cores", plan.cores},
                              {"particle_steps", plan.run_particle_steps},
                              {"wall_s", plan.run_wall_s},
-                             {"genesis_wall_max_s", plan.genesis_wall_max_s},
-                             {"specimens", nlohmann::ordered_json::array()},
-                             {"runs", nlohmann::ordered_json::array()},
-                             {"assumptions", plan.assumptions}};
-    for (const SpecimenPlan& s : plan.specimens)
-        j["specimens"].push_back({{"sand", s.sand}, {"set", s.set}, {"seed", s.seed}, {"particles", s.particles},
-                                  {"cached", s.cached}, {"genesis_max_steps", s.genesis_max_steps}});
-    for (const RunCostPlan& r : plan.runs)
-        j["runs"].push_back({{"sand", r.sand},
-                             {"set", r.set},
-                             {"particles", r.particles},
-                             {"time_step_s", r.time_step_s},
-                             {"seconds_per_particle_step", r.seconds_per_particle_step},
-                             {"settle_steps", r.settle_steps},
-                             {"compression_runs", r.compression_runs},
-                             {"compression_steps", r.compression_steps},
-                             {"tension_runs", r.tension_runs},
-                             {"tension_steps", r.tension_steps},
-                             {"timed_on_packing", r.timed_on_packing}});
+                             {"genesis_wall_max_s", plan.genesis_wall_max_s}};
+    add_cost_json(j, plan.specimens, plan.runs);
+    j["assumptions"] = plan.assumptions;
     return j.dump(2);
 }
 

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "calibrate/problem.hpp"
 
 namespace gradem::cal {
@@ -40,6 +42,7 @@ struct SpecimenPlan {
     std::int64_t particles = 0;      ///< the cached packing's, or genesis' sampled count
     bool cached = false;             ///< false: genesis runs first
     std::int64_t genesis_max_steps = 0;  ///< genesis' step budget (0 when cached)
+    std::uint64_t packing_key = 0;   ///< exp::packing_key of the specimen (the same packing planned twice is made once)
 };
 
 /// The cost of one run of a sand on a specimen set, from the engine timing.
@@ -82,6 +85,39 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem);
 
 /// The plan of `problem` (steps 1-5 above). Throws what the run would throw for bad input.
 CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds = 2.0);
+
+/// A set of packings the runs go to: the fit's (problem.base, problem.seeds), the scale-up's, the
+/// validation's, or a study case's.
+struct PlannedSpecimens {
+    std::string name;
+    exp::CubeConfig base;
+    std::vector<std::uint64_t> seeds;
+};
+
+/// How many runs of each test a sand makes on a set (each on every seed in turn).
+struct RunCounts {
+    int compression = 0, tension = 0;
+};
+
+/// Steps 2-4 above for sand `s` of `problem` on `set` at `material`: the set's packings (cached
+/// or to be made, appended to `specimens`) and the cost of `counts` runs, from `probe_seconds` of
+/// engine timing on the first packing (or a quick stand-in when genesis has not run).
+RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens& set, std::size_t s,
+                      const exp::MaterialParams& material, RunCounts counts, double probe_seconds,
+                      std::vector<SpecimenPlan>& specimens);
+
+/// Step 5: Σ particle-steps and the wall time of `runs` over `parallel` concurrent runs, and the
+/// upper bound of the genesis still to run for `specimens` (each distinct packing once).
+struct PlanTotals {
+    double particle_steps = 0.0, run_wall_s = 0.0, genesis_wall_max_s = 0.0;
+};
+PlanTotals plan_totals(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, int parallel);
+
+/// The specimen, run and wall-time lines of a plan, for people; the same as "specimens" and
+/// "runs" arrays of `j`, for programs.
+std::string cost_text(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, const PlanTotals& totals,
+                      int workers, int cores);
+void add_cost_json(nlohmann::ordered_json& j, const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs);
 
 /// For people (stdout of --plan) and for programs (--json).
 std::string plan_text(const CalibrationPlan& plan);

@@ -111,6 +111,10 @@ StudyRunner::StudyRunner(const StudyConfig& config, std::function<void(const std
     if (const auto rows = ledger_->size()) say("ledger " + config.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
 }
 
+StudyRunner::StudyRunner(const StudyConfig& config, std::vector<PlannedCase>& planned)
+    : config_(config), ledger_(std::make_unique<Ledger>(":memory:", common::fnv1a_hex(config.describe()), config.describe())),
+      execution_(nullptr), planned_(&planned) {}
+
 StudyRunner::~StudyRunner() = default;
 
 void StudyRunner::say(const std::string& line) const {
@@ -161,6 +165,10 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
     const std::vector<std::uint64_t> own_seeds = problem.seeds;
     problem = as_study_problem(std::move(problem), config_);
     if (options.calibration_seeds) problem.seeds = own_seeds;
+    if (planned_) {
+        planned_->push_back({problem, points, labels.empty() ? "study" : labels.front(), options.test});
+        problem.model = "analytic";
+    }
     const CaseRuns runs = evaluate_case(problem, points, labels.empty() ? "study" : labels.front(), *ledger_, execution_,
                                         options.test, [this](const std::string& s) { say(s); });
     const std::vector<Evaluation>& evals = runs.evals;
@@ -185,10 +193,6 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
 
 // --- the whole study -----------------------------------------------------------------------
 
-namespace {
-
-/// The calibration(s) the kind studies, each checked (and the study's sands against it)
-/// before the study's ledger is opened.
 std::vector<CalibratedPoint> load_studied(const StudyConfig& config, StudyResult& result) {
     std::vector<CalibratedPoint> points;
     const std::vector<fs::path> files = study_kind(config.kind).one_calibration ? std::vector<fs::path>{config.calibration}
@@ -201,8 +205,6 @@ std::vector<CalibratedPoint> load_studied(const StudyConfig& config, StudyResult
     }
     return points;
 }
-
-}  // namespace
 
 StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log, const StudyExecution* execution) {
     const auto start = std::chrono::steady_clock::now();

@@ -69,6 +69,10 @@ struct StudyResult {
 
 struct StudyExecution;
 
+/// The calibration(s) the study's kind studies, each checked (and the study's sands against
+/// it): InputError as load_calibrated_point. Their summaries go to result.calibration_summaries.
+std::vector<CalibratedPoint> load_studied(const StudyConfig& config, StudyResult& result);
+
 /// Runs the study; its runs go to threads of this process, or to `execution`'s executor (the
 /// worker ranks of an MPI job: calibrate/study/study_models.hpp), with the same results.
 StudyResult run_study(const StudyConfig& config, const std::function<void(const std::string&)>& log = {},

@@ -21,8 +21,21 @@ struct CaseOptions {
     bool calibration_seeds = false;  ///< the problem's own seeds (the calibration's) instead of the study's
 };
 
+/// A case as a kind asked for it, recorded by a planning runner: the problem its runs go to
+/// (after as_study_problem: the study's seeds and sands), its parameter points and its test.
+struct PlannedCase {
+    CalibrationProblem problem;
+    std::vector<std::vector<double>> points;
+    std::string label;
+    CubeTest test = CubeTest::compression;
+};
+
 class StudyRunner {
 public:
+    /// A planning runner (`gradem study --plan`, study_plan.hpp): records every case in `planned`
+    /// and answers it on the analytic stand-in with an in-memory ledger, so the kind's analysis
+    /// runs through and asks for its later cases; nothing is written.
+    StudyRunner(const StudyConfig& config, std::vector<PlannedCase>& planned);
     /// `execution`: run on that executor (an MPI job's) instead of threads of this process.
     StudyRunner(const StudyConfig& config, std::function<void(const std::string&)> log, const StudyExecution* execution = nullptr);
     ~StudyRunner();
@@ -42,6 +55,7 @@ private:
     std::function<void(const std::string&)> log_;
     std::unique_ptr<Ledger> ledger_;
     const StudyExecution* execution_;
+    std::vector<PlannedCase>* planned_ = nullptr;
     int executed_ = 0, from_ledger_ = 0, failed_ = 0;
 };
 

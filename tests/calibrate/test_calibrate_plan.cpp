@@ -1,10 +1,14 @@
 // The cost before the run (calibrate/plan.hpp): the expected runs are the solver's own path on
 // the analytic stand-in, and a DEM plan's specimens, time step and steps are those of the runs
-// it plans; planning writes nothing.
+// it plans; a study's plan prices the cases its kind asks for; planning writes nothing.
 #include <catch2/catch.hpp>
 
+#include "calibrate/parameters.hpp"
 #include "calibrate/plan.hpp"
+#include "calibrate/study/study_config.hpp"
+#include "calibrate/study/study_plan.hpp"
 #include "calibrate_fixture.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
 #include "experiments/virtual_tests/cube_test.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 
@@ -111,4 +115,63 @@ TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the
     const std::string text = cal::plan_text(plan);
     CHECK(text.find("estimated wall time") != std::string::npos);
     CHECK(text.find("Van Buren (validation), seed 11") != std::string::npos);
+}
+
+TEST_CASE("study plan: the cases the kind asks for, priced on their own specimens, and nothing is written",
+          "[calibrate][plan][study]") {
+    TempDir dir("study-plan-dem");
+    const exp::CubeConfig cube = exp::load_cube_config(write_tiny_base(dir.path));
+    auto model = cal::make_dem_model(cube, {"Van Buren"});
+    model->prepare({1}, 1, {});
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, {"Van Buren"}, cube.material, {1}).dump(1));
+    const fs::path toml = dir.path / "problem.toml";
+    test::write_text(toml, "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1]\n"
+                           "[targets]\nlab_results = \"lab_results.json\"\n[output]\ndir = \"cal\"\n");
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
+    // The calibration studied, as gradem calibrate writes its summary: every parameter at its start.
+    nlohmann::json summary{{"schema", "gradem-calibration/1"},
+                           {"config", toml.string()},
+                           {"sands", {"Van Buren"}},
+                           {"lab_results", problem.lab_results.string()},
+                           {"parameters", nlohmann::json::array()}};
+    for (const cal::ParameterSpec& p : problem.parameters) summary["parameters"].push_back({{"name", p.name}, {"value", p.start}});
+    fs::create_directories(dir.path / "cal");
+    test::write_text(dir.path / "cal" / "summary.json", summary.dump(1));
+    test::write_text(dir.path / "study.toml", "[study]\nkind = \"sensitivity\"\ncalibration = \"" +
+                                                  (dir.path / "cal" / "summary.json").string() + "\"\nseeds = [1, 3]\n[output]\ndir = \"" +
+                                                  (dir.path / "study-out").string() + "\"\n");
+    const cal::StudyConfig config = cal::load_study_config(dir.path / "study.toml");
+    const cal::StudyPlan plan = cal::plan_study(config, 0.5);
+    CHECK_FALSE(fs::exists(dir.path / "study-out"));  // no ledger, no outputs
+
+    // Sensitivity asks for the calibrated point and one step per free parameter, on both seeds.
+    const cal::ParameterSpace space(problem.parameters, problem.base.material);
+    const int points = 1 + static_cast<int>(space.size());
+    CHECK(plan.kind == "sensitivity");
+    CHECK(plan.cases == points);
+    CHECK(plan.compression_runs == 2 * points);
+    CHECK(plan.tension_runs == 0);
+    REQUIRE(plan.runs.size() == 1);
+    CHECK(plan.runs[0].compression_runs == plan.compression_runs);
+
+    // Seed 1 is cached (its own grain count), seed 3 still needs genesis (a bound on its cost).
+    REQUIRE(plan.specimens.size() == 2);
+    CHECK(plan.specimens[0].cached);
+    CHECK_FALSE(plan.specimens[1].cached);
+    CHECK(plan.genesis_wall_max_s > 0.0);
+    CHECK(plan.run_wall_s > 0.0);
+
+    // Timed on seed 1 at the calibrated point: the time step of that specimen.
+    exp::SpecimenSpec seed1 = cube.specimen;
+    seed1.seed = 1;
+    const exp::Packing packing = exp::load_or_generate(exp::load_gradation(cube), seed1, cube.cache_dir);
+    World specimen = exp::bonded_cube_specimen(packing, space.material(space.start()));
+    CHECK(plan.runs[0].time_step_s == Approx(specimen.time_step()).epsilon(1e-12));
+    CHECK(plan.specimens[0].particles == static_cast<std::int64_t>(packing.radius.size()));
+
+    const nlohmann::json j = nlohmann::json::parse(cal::study_plan_json(plan));
+    CHECK(j["cases"] == points);
+    CHECK(j["runs"].size() == 1);
+    CHECK(j["wall_s"].get<double>() == plan.run_wall_s);
+    CHECK(cal::study_plan_text(plan).find("study sensitivity: " + std::to_string(points) + " cases") == 0);
 }

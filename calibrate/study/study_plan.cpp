@@ -1,0 +1,93 @@
+#include "calibrate/study/study_plan.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <thread>
+
+#include "calibrate/parameters.hpp"
+#include "calibrate/study/study.hpp"
+#include "calibrate/study/study_kind.hpp"
+#include "calibrate/study/study_runner.hpp"
+
+namespace gradem::cal {
+namespace {
+
+/// Every case the kind asks for, answered on the analytic stand-in (study_plan.hpp, step 1).
+std::vector<PlannedCase> planned_cases(const StudyConfig& config) {
+    StudyResult result;
+    result.config = config;
+    const std::vector<CalibratedPoint> calibrations = load_studied(config, result);
+    std::vector<PlannedCase> planned;
+    StudyRunner runner(config, planned);
+    study_kind(config.kind).run(calibrations, runner, result);
+    return planned;
+}
+
+/// Step 2 for one case: one RunCostPlan per sand, at the case's first point.
+void plan_case(const PlannedCase& c, double probe_seconds, StudyPlan& plan) {
+    const CalibrationProblem& problem = c.problem;
+    const ParameterSpace space(problem.parameters, problem.base.material);
+    const exp::MaterialParams material = space.material(c.points.front());
+    const int runs = static_cast<int>(c.points.size() * problem.seeds.size());
+    const RunCounts counts = c.test == CubeTest::tension ? RunCounts{0, runs} : RunCounts{runs, 0};
+    const PlannedSpecimens set{c.label, problem.base, problem.seeds};
+    for (std::size_t s = 0; s < problem.sands.size(); ++s)
+        plan.runs.push_back(plan_runs(problem, set, s, material, counts, probe_seconds, plan.specimens));
+    (c.test == CubeTest::tension ? plan.tension_runs : plan.compression_runs) += runs * static_cast<int>(problem.sands.size());
+}
+
+}  // namespace
+
+StudyPlan plan_study(const StudyConfig& config, double probe_seconds) {
+    StudyPlan plan;
+    plan.kind = to_string(config.kind);
+    plan.workers = config.workers;
+    plan.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const std::vector<PlannedCase> cases = planned_cases(config);
+    for (const PlannedCase& c : cases) {
+        plan.cases += static_cast<int>(c.points.size());
+        if (c.problem.model == "analytic") continue;
+        plan_case(c, probe_seconds, plan);
+    }
+    if (!cases.empty() && cases.front().problem.model == "analytic")
+        plan.assumptions.push_back("model = \"analytic\": the stand-in runs in milliseconds; nothing to estimate");
+    const PlanTotals totals = plan_totals(plan.specimens, plan.runs, std::min(plan.workers, plan.cores));
+    plan.run_particle_steps = totals.particle_steps;
+    plan.run_wall_s = totals.run_wall_s;
+    plan.genesis_wall_max_s = totals.genesis_wall_max_s;
+    plan.assumptions.push_back("the cases are those the kind asks for when the stand-in answers the earlier ones; "
+                               "runs already in the study's ledger are served from it and cost nothing");
+    std::ostringstream end;
+    end << "a compression run ends at " << kEndOverPeakStrain << " x the expected strain at peak (calibrate/plan.hpp); "
+        << "every run of a case costs per particle-step what its first point costs in the engine timing";
+    plan.assumptions.push_back(end.str());
+    return plan;
+}
+
+std::string study_plan_text(const StudyPlan& plan) {
+    std::ostringstream o;
+    o << "study " << plan.kind << ": " << plan.cases << (plan.cases == 1 ? " case, " : " cases, ") << plan.compression_runs
+      << " compression runs";
+    if (plan.tension_runs) o << " and " << plan.tension_runs << " tension runs";
+    o << "\n";
+    o << cost_text(plan.specimens, plan.runs, {plan.run_particle_steps, plan.run_wall_s, plan.genesis_wall_max_s}, plan.workers, plan.cores);
+    for (const std::string& a : plan.assumptions) o << "assumed: " << a << "\n";
+    return o.str();
+}
+
+std::string study_plan_json(const StudyPlan& plan) {
+    nlohmann::ordered_json j{{"kind", plan.kind},
+                             {"cases", plan.cases},
+                             {"compression_runs", plan.compression_runs},
+                             {"tension_runs", plan.tension_runs},
+                             {"workers", plan.workers},
+                             {"cores", plan.cores},
+                             {"particle_steps", plan.run_particle_steps},
+                             {"wall_s", plan.run_wall_s},
+                             {"genesis_wall_max_s", plan.genesis_wall_max_s}};
+    add_cost_json(j, plan.specimens, plan.runs);
+    j["assumptions"] = plan.assumptions;
+    return j.dump(2);
+}
+
+}  // namespace gradem::cal
