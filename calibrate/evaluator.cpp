@@ -105,22 +105,18 @@ std::optional<RunOutcome> Evaluator::served_outcome(const std::string& key) cons
     return found;
 }
 
-std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double>>& points,
-                                            const std::vector<std::size_t>& sands, const std::string& label) {
-    const int needed = runs_needed(points, sands);
-    if (needed > runs_remaining())
-        throw BudgetExhausted("budget: " + std::to_string(needed) + " more runs needed, " + std::to_string(runs_remaining()) +
-                              " of solver.max_runs = " + std::to_string(problem_.solver.max_runs) + " left");
-    // 1. Every run of every point: from the ledger, or queued.
-    struct Job {
-        std::size_t point, sand;
-        std::uint64_t seed;
-        CubeTest test;
-        exp::MaterialParams material;
-        std::string key;
-        RunOutcome outcome;
-        bool done = false;
-    };
+struct Evaluator::Job {
+    std::size_t point, sand;
+    std::uint64_t seed;
+    CubeTest test;
+    exp::MaterialParams material;
+    std::string key;
+    RunOutcome outcome;
+    bool done = false;
+};
+
+std::vector<Evaluator::Job> Evaluator::jobs_of(const std::vector<std::vector<double>>& points,
+                                               const std::vector<std::size_t>& sands) const {
     std::vector<Job> jobs;
     for (std::size_t p = 0; p < points.size(); ++p) {
         const exp::MaterialParams m = space_.material(points[p]);
@@ -128,6 +124,11 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
             for (std::uint64_t seed : problem_.seeds)
                 for (CubeTest t : tests()) jobs.push_back({p, s, seed, t, m, run_key(m, s, seed, t), {}, false});
     }
+    return jobs;
+}
+
+/// The jobs the ledger serves are done; the others are queued, each distinct key once.
+std::vector<std::size_t> Evaluator::serve_from_ledger(std::vector<Job>& jobs) {
     std::vector<std::size_t> queue;
     std::set<std::string> queued;
     for (std::size_t j = 0; j < jobs.size(); ++j) {
@@ -139,8 +140,13 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
             queue.push_back(j);
         }
     }
-    // 2. Run the rest on the executor; record each run as soon as it ends (the executor calls
-    //    back one run at a time).
+    return queue;
+}
+
+/// The queued jobs on the executor, each recorded as soon as it ends (the executor calls back
+/// one run at a time); then the duplicates of a queued run inside this batch.
+void Evaluator::run_queued(std::vector<Job>& jobs, const std::vector<std::size_t>& queue,
+                           const std::vector<std::vector<double>>& points) {
     const int evaluations = static_cast<int>(history_.size() + points.size());
     std::vector<RunRequest> requests;
     for (std::size_t j : queue) requests.push_back({jobs[j].sand, jobs[j].seed, jobs[j].material, jobs[j].test});
@@ -156,33 +162,49 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
         run_seconds_ += job.outcome.wall_seconds;
         report(evaluations);
     });
-    for (Job& job : jobs)  // duplicates of a queued run inside this batch
+    for (Job& job : jobs)
         if (!job.done)
             for (const Job& other : jobs)
                 if (other.done && other.key == job.key) job.outcome = other.outcome, job.done = true;
-    // 3. Per point: per-sand means over seeds; a point fails if any of its runs failed.
+}
+
+/// One point's evaluation: per-sand means over seeds; it fails if any of its runs failed.
+Evaluation Evaluator::evaluation_of(const std::vector<Job>& jobs, std::size_t point, const std::vector<double>& values,
+                                    const std::vector<std::size_t>& sands, const std::string& label) {
+    Evaluation e;
+    e.index = static_cast<int>(history_.size()) + 1;
+    e.values = values;
+    e.label = label;
+    for (std::size_t s : sands) {
+        std::vector<RunOutcome> runs, tension_runs;
+        for (const Job& job : jobs)
+            if (job.point == point && job.sand == s) (job.test == primary_ ? runs : tension_runs).push_back(job.outcome);
+        e.sands.push_back(summarise(s, runs, tension_runs));
+        if (e.sands.back().failed && !e.failed) {
+            e.failed = true;
+            e.failure = problem_.sands[s] + ": " + e.sands.back().failure;
+        }
+        e.runs.insert(e.runs.end(), runs.begin(), runs.end());
+        e.tension_runs.insert(e.tension_runs.end(), tension_runs.begin(), tension_runs.end());
+    }
+    e.runs_used = runs_used();
+    e.seconds = seconds();
+    return e;
+}
+
+std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double>>& points,
+                                            const std::vector<std::size_t>& sands, const std::string& label) {
+    const int needed = runs_needed(points, sands);
+    if (needed > runs_remaining())
+        throw BudgetExhausted("budget: " + std::to_string(needed) + " more runs needed, " + std::to_string(runs_remaining()) +
+                              " of solver.max_runs = " + std::to_string(problem_.solver.max_runs) + " left");
+    std::vector<Job> jobs = jobs_of(points, sands);
+    const std::vector<std::size_t> queue = serve_from_ledger(jobs);
+    run_queued(jobs, queue, points);
     std::vector<Evaluation> out;
     for (std::size_t p = 0; p < points.size(); ++p) {
-        Evaluation e;
-        e.index = static_cast<int>(history_.size()) + 1;
-        e.values = points[p];
-        e.label = label;
-        for (std::size_t s : sands) {
-            std::vector<RunOutcome> runs, tension_runs;
-            for (const Job& job : jobs)
-                if (job.point == p && job.sand == s) (job.test == primary_ ? runs : tension_runs).push_back(job.outcome);
-            e.sands.push_back(summarise(s, runs, tension_runs));
-            if (e.sands.back().failed && !e.failed) {
-                e.failed = true;
-                e.failure = problem_.sands[s] + ": " + e.sands.back().failure;
-            }
-            e.runs.insert(e.runs.end(), runs.begin(), runs.end());
-            e.tension_runs.insert(e.tension_runs.end(), tension_runs.begin(), tension_runs.end());
-        }
-        e.runs_used = runs_used();
-        e.seconds = seconds();
-        history_.push_back(e);
-        out.push_back(std::move(e));
+        history_.push_back(evaluation_of(jobs, p, points[p], sands, label));
+        out.push_back(history_.back());
     }
     if (queue.empty()) report(static_cast<int>(history_.size()));  // served from the ledger: no line yet
     return out;

@@ -109,6 +109,13 @@ private:
     std::string parameters_json(const std::vector<double>& values) const;
     SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs, const std::vector<RunOutcome>& tension_runs) const;
     void report(int evaluations);
+    // The steps of evaluate().
+    struct Job;  ///< one run of one point: (point, sand, seed, test), its key and outcome
+    std::vector<Job> jobs_of(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands) const;
+    std::vector<std::size_t> serve_from_ledger(std::vector<Job>& jobs);
+    void run_queued(std::vector<Job>& jobs, const std::vector<std::size_t>& queue, const std::vector<std::vector<double>>& points);
+    Evaluation evaluation_of(const std::vector<Job>& jobs, std::size_t point, const std::vector<double>& values,
+                             const std::vector<std::size_t>& sands, const std::string& label);
 
     const CalibrationProblem& problem_;
     const ParameterSpace& space_;

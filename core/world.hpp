@@ -180,6 +180,8 @@ private:
     /// Phases 2 and 3 in one pass for the parallel bond (world_pairs.cpp); returns the bond
     /// energies, the contact strain and slip energies through `strain` and `slip`.
     BondEnergy compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip);
+    struct ParallelBondPass;  ///< its steps, one pair block at a time (world_pairs.cpp)
+    friend struct ParallelBondPass;
     /// The World's state for a law's own pass over every bond (Law::compute_all, bond_pass.hpp).
     BondPass bond_pass();
     template <class Law>

@@ -189,158 +189,184 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     return true;
 }
 
-}  // namespace
+/// FlatJointLaw::compute_all as a list of steps per batch of kJointLanes bonds: scan (the
+/// fully bonded joints into lanes), the lane arithmetic, then in bond order the lanes that held
+/// and every other acting joint through the law's scalar kernel.
+struct FlatJointPass {
+    const BondPass& pass;
+    double dt;
+    double* side_data;
+    std::size_t stride;
+    bool track;  ///< keep bond energies (sim.track_energy)
+    std::vector<FlatJointLaw::Context> contexts;  ///< one per bond family pair
+    bool use_lanes = false;
+    std::span<const FlatElementGeometry> elements;
+    std::vector<BondPassEnergy> partial;             ///< per bond block
+    std::vector<std::vector<BreakEvent>> broken;     ///< per bond block, in bond order
 
-BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
-    using namespace flat_side;
-    using BondEnergy = BondPassEnergy;
-    const ParticleSet& particles = pass.particles;
-    std::vector<ParallelBond>& bonds = pass.bonds;
-    double* const side_data = pass.side.data();
-    const std::vector<BondConstants>& constants = pass.constants;
-    std::vector<PairOutput>& pair_out = pass.pair_out;
-    const std::int64_t step = pass.step;
-    const double time = pass.time;
-    const auto nb = static_cast<std::int64_t>(bonds.size());
-    std::vector<BondEnergy> partial(static_cast<std::size_t>(block_count(nb)));
-    std::vector<std::vector<BreakEvent>> broken(static_cast<std::size_t>(block_count(nb)));
-    std::vector<FlatJointLaw::Context> contexts;  // one per bond family pair
-    for (const BondParams& p : pass.family_params) contexts.push_back(FlatJointLaw::context(p, pass.sim.track_energy));
-    const bool use_lanes = pass.sim.vectorised_bond_passes && same_elements(contexts);
-    const std::span<const FlatElementGeometry> elements = contexts.front().elements;
-    const std::size_t n_elements = elements.size();
-    const std::size_t stride = pass.stride;
-    const bool track = pass.sim.track_energy;
+    FlatJointPass(const BondPass& p, double step)
+        : pass(p), dt(step), side_data(p.side.data()), stride(p.stride), track(p.sim.track_energy) {
+        for (const BondParams& bp : p.family_params) contexts.push_back(FlatJointLaw::context(bp, track));
+        use_lanes = p.sim.vectorised_bond_passes && same_elements(contexts);
+        elements = contexts.front().elements;
+        const auto blocks = static_cast<std::size_t>(block_count(static_cast<std::int64_t>(p.bonds.size())));
+        partial.resize(blocks);
+        broken.resize(blocks);
+    }
 
-    for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
-        BondEnergy e;
+    void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        BondPassEnergy e;
         std::vector<BondBreak> breaks;
         auto lanes = std::make_unique_for_overwrite<JointLanes>();  // no zero-fill of 20 kB per block
         JointLanes& L = *lanes;
         std::int8_t which[kJointLanes];  // per bond of the batch: its lane, -1 scalar or not acting
-        // A joint through the law's scalar kernel, as the generic bond phase does.
-        auto scalar_joint = [&](std::int64_t k) {
-            ParallelBond& b = bonds[static_cast<std::size_t>(k)];
-            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-            const PairState s{particles.position[i], particles.position[j], particles.velocity[i],
-                              particles.velocity[j], particles.spin[i],     particles.spin[j],
-                              particles.radius[i],   particles.radius[j]};
-            const PairKinematics kin = pair_kinematics(s, dt);
-            const BondConstants& bc = constants[static_cast<std::size_t>(k)];
-            const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
-            double* side = side_data + static_cast<std::size_t>(k) * stride;
-            const BondStepResult r = FlatJointLaw::step(contexts[b.family_pair], b, side, sec, bc.stiffness, kin, breaks);
-            e.stored += r.stored;
-            e.released += r.released;
-            e.damage += r.damage;
-            e.slip += r.slip;
-            for (const BondBreak& x : breaks)
-                broken[static_cast<std::size_t>(blk)].push_back({step, time, static_cast<std::int32_t>(k), b.i, b.j,
-                                                                 x.mode, s.xa + kin.arm_a + x.offset, kin.normal,
-                                                                 sec.radius, x.tensile_stress, x.shear_stress,
-                                                                 x.element});
-            breaks.clear();
-            if (r.failure != BondState::intact) return;
-            PairOutput& out = pair_out[static_cast<std::size_t>(b.slot)];
-            out.force_j += r.force_j;
-            out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
-        };
-        // A fully bonded joint whose elements all held: the lane's results become its state.
-        auto store_lane = [&](std::int64_t k, int l) {
-            ParallelBond& b = bonds[static_cast<std::size_t>(k)];
-            double* side = side_data + static_cast<std::size_t>(k) * stride;
-            const Vec3 t1 = lane(L.t1, l), bend_total = lane(L.bend_total, l);
-            side[axis] = t1.x, side[axis + 1] = t1.y, side[axis + 2] = t1.z;
-            side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
-            side[twist] = L.twist[l];
-            side[normal] = L.normal[l];
-            for (std::size_t el = 0; el < n_elements; ++el) {
-                double* p = side + kFlatJointHeader + el * kFlatElementSize;
-                p[1] = L.shear[el][0][l];
-                p[2] = L.shear[el][1][l];
-            }
-            b.normal_force = L.fn[l];
-            b.shear_force = lane(L.shear_res, l);
-            b.twist_moment = L.tw[l];
-            b.bend_moment = lane(L.bend_res, l);
-            BondStepResult r;
-            r.stored = track ? L.stored[l] : 0.0;
-            e.stored += r.stored;
-            e.released += r.released;
-            e.damage += r.damage;
-            e.slip += r.slip;
-            PairOutput& out = pair_out[static_cast<std::size_t>(b.slot)];
-            out.force_j += lane(L.force, l);
-            out.torque_j += lane(L.torque, l);
-        };
         for (std::int64_t b0 = begin; b0 < end; b0 += kJointLanes) {
             const std::int64_t b1 = std::min(end, b0 + kJointLanes);
-            int count = 0;
-            // 1. scan: the fully bonded joints into lanes
-            for (std::int64_t k = b0; k < b1; ++k) {
-                if (k + kPrefetchAhead < end) {
-                    const auto ka = static_cast<std::size_t>(k + kPrefetchAhead);
-                    const auto jn = static_cast<std::size_t>(bonds[ka].j);
-                    __builtin_prefetch(&particles.position[jn]);
-                    __builtin_prefetch(&particles.velocity[jn]);
-                    __builtin_prefetch(&particles.spin[jn]);
-                    // the joint's own streams: its side state (the lines with the header and the
-                    // element shears) and its bond record further on, its constants
-                    const char* side_ahead = reinterpret_cast<const char*>(side_data + ka * stride);
-                    for (std::size_t line = 0; line < stride * sizeof(double); line += 64)
-                        __builtin_prefetch(side_ahead + line, 1);
-                    __builtin_prefetch(&bonds[std::min(ka + kPrefetchAhead, bonds.size() - 1)], 1);
-                    __builtin_prefetch(&constants[ka]);
-                }
-                const auto slot = static_cast<std::size_t>(k - b0);
-                which[slot] = -1;
-                const ParallelBond& b = bonds[static_cast<std::size_t>(k)];
-                // fully bonded: intact and interface 0 (kPartlyBonded: some element unbonded)
-                if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
-                const double* side = side_data + static_cast<std::size_t>(k) * stride;
-                const int l = count++;
-                which[slot] = static_cast<std::int8_t>(l);
-                const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-                set_lane(L.xa, l, particles.position[i]);
-                set_lane(L.xb, l, particles.position[j]);
-                set_lane(L.va, l, particles.velocity[i]);
-                set_lane(L.vb, l, particles.velocity[j]);
-                set_lane(L.wa, l, particles.spin[i]);
-                set_lane(L.wb, l, particles.spin[j]);
-                L.ra[l] = particles.radius[i];
-                L.rb[l] = particles.radius[j];
-                set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});
-                set_lane(L.bend, l, {side[bend], side[bend + 1], side[bend + 2]});
-                L.twist[l] = side[twist];
-                L.normal[l] = side[normal];
-                L.scale[l] = side[stiffness_scale];
-                for (std::size_t el = 0; el < n_elements; ++el) {
-                    const double* p = side + kFlatJointHeader + el * kFlatElementSize;
-                    L.shear[el][0][l] = p[1];
-                    L.shear[el][1][l] = p[2];
-                }
-                const BondConstants& bc = constants[static_cast<std::size_t>(k)];
-                L.radius[l] = bc.radius;
-                L.kn[l] = bc.stiffness.normal;
-                L.ks[l] = bc.stiffness.shear;
-                L.strength[l] = b.tensile_strength;
-                L.cohesion[l] = b.cohesion;
-                L.tan_phi[l] = contexts[b.family_pair].tan_phi;
-            }
-            // 2. the arithmetic of the fully bonded joints, vectorised across them
-            L.count = count;
-            if (count > 0) joint_lanes(L, dt, elements);
-            // 3. in bond order: the lanes that held, every other acting joint through the law
+            scan(b0, b1, end, L, which);
+            if (L.count > 0) joint_lanes(L, dt, elements);
             for (std::int64_t k = b0; k < b1; ++k) {
                 const int l = which[static_cast<std::size_t>(k - b0)];
-                if (l >= 0 && L.fails[l] == 0.0) store_lane(k, l);
-                else if (bond_acts(bonds[static_cast<std::size_t>(k)])) scalar_joint(k);
+                if (l >= 0 && L.fails[l] == 0.0) store_lane(k, L, l, e);
+                else if (bond_acts(pass.bonds[static_cast<std::size_t>(k)])) scalar_joint(k, blk, breaks, e);
             }
         }
         partial[static_cast<std::size_t>(blk)] = e;
-    });
-    for (auto& list : broken) pass.breaks.insert(pass.breaks.end(), list.begin(), list.end());
-    return ordered_sum(partial);
+    }
+
+    /// 1. The fully bonded joints of [b0, b1) into lanes: intact and interface 0
+    ///    (kPartlyBonded: some element unbonded); `which` gets each bond's lane or -1.
+    __attribute__((always_inline)) inline void scan(std::int64_t b0, std::int64_t b1, std::int64_t end, JointLanes& L,
+                                                    std::int8_t* which) const {
+        int count = 0;
+        for (std::int64_t k = b0; k < b1; ++k) {
+            prefetch_ahead(k, end);
+            const auto slot = static_cast<std::size_t>(k - b0);
+            which[slot] = -1;
+            const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
+            if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
+            const int l = count++;
+            which[slot] = static_cast<std::int8_t>(l);
+            load_joint(L, l, k, b);
+        }
+        L.count = count;
+    }
+
+    /// Prefetches for bond k: particle j of a bond a few bonds ahead (a random access), and that
+    /// joint's own streams: its side state (the lines with the header and the element shears),
+    /// its bond record further on, its constants.
+    __attribute__((always_inline)) inline void prefetch_ahead(std::int64_t k, std::int64_t end) const {
+        if (k + kPrefetchAhead >= end) return;
+        const auto ka = static_cast<std::size_t>(k + kPrefetchAhead);
+        const auto jn = static_cast<std::size_t>(pass.bonds[ka].j);
+        __builtin_prefetch(&pass.particles.position[jn]);
+        __builtin_prefetch(&pass.particles.velocity[jn]);
+        __builtin_prefetch(&pass.particles.spin[jn]);
+        const char* side_ahead = reinterpret_cast<const char*>(side_data + ka * stride);
+        for (std::size_t line = 0; line < stride * sizeof(double); line += 64) __builtin_prefetch(side_ahead + line, 1);
+        __builtin_prefetch(&pass.bonds[std::min(ka + kPrefetchAhead, pass.bonds.size() - 1)], 1);
+        __builtin_prefetch(&pass.constants[ka]);
+    }
+
+    /// Lane l: joint k's particles, its header and element shear forces, its constants.
+    __attribute__((always_inline)) inline void load_joint(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
+        using namespace flat_side;
+        const ParticleSet& particles = pass.particles;
+        const double* side = side_data + static_cast<std::size_t>(k) * stride;
+        const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+        set_lane(L.xa, l, particles.position[i]);
+        set_lane(L.xb, l, particles.position[j]);
+        set_lane(L.va, l, particles.velocity[i]);
+        set_lane(L.vb, l, particles.velocity[j]);
+        set_lane(L.wa, l, particles.spin[i]);
+        set_lane(L.wb, l, particles.spin[j]);
+        L.ra[l] = particles.radius[i];
+        L.rb[l] = particles.radius[j];
+        set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});
+        set_lane(L.bend, l, {side[bend], side[bend + 1], side[bend + 2]});
+        L.twist[l] = side[twist];
+        L.normal[l] = side[normal];
+        L.scale[l] = side[stiffness_scale];
+        for (std::size_t el = 0; el < elements.size(); ++el) {
+            const double* p = side + kFlatJointHeader + el * kFlatElementSize;
+            L.shear[el][0][l] = p[1];
+            L.shear[el][1][l] = p[2];
+        }
+        const BondConstants& bc = pass.constants[static_cast<std::size_t>(k)];
+        L.radius[l] = bc.radius;
+        L.kn[l] = bc.stiffness.normal;
+        L.ks[l] = bc.stiffness.shear;
+        L.strength[l] = b.tensile_strength;
+        L.cohesion[l] = b.cohesion;
+        L.tan_phi[l] = contexts[b.family_pair].tan_phi;
+    }
+
+    /// A fully bonded joint whose elements all held: the lane's results become its state.
+    __attribute__((always_inline)) inline void store_lane(std::int64_t k, const JointLanes& L, int l, BondPassEnergy& e) const {
+        using namespace flat_side;
+        ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
+        double* side = side_data + static_cast<std::size_t>(k) * stride;
+        const Vec3 t1 = lane(L.t1, l), bend_total = lane(L.bend_total, l);
+        side[axis] = t1.x, side[axis + 1] = t1.y, side[axis + 2] = t1.z;
+        side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
+        side[twist] = L.twist[l];
+        side[normal] = L.normal[l];
+        for (std::size_t el = 0; el < elements.size(); ++el) {
+            double* p = side + kFlatJointHeader + el * kFlatElementSize;
+            p[1] = L.shear[el][0][l];
+            p[2] = L.shear[el][1][l];
+        }
+        b.normal_force = L.fn[l];
+        b.shear_force = lane(L.shear_res, l);
+        b.twist_moment = L.tw[l];
+        b.bend_moment = lane(L.bend_res, l);
+        BondStepResult r;
+        r.stored = track ? L.stored[l] : 0.0;
+        e.stored += r.stored;  // every sum as the scalar path adds it (+0 adds change no bit)
+        e.released += r.released;
+        e.damage += r.damage;
+        e.slip += r.slip;
+        PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
+        out.force_j += lane(L.force, l);
+        out.torque_j += lane(L.torque, l);
+    }
+
+    /// A joint through the law's scalar kernel, as the generic bond phase does; its breaks
+    /// into block `blk`'s events.
+    void scalar_joint(std::int64_t k, std::int64_t blk, std::vector<BondBreak>& breaks, BondPassEnergy& e) {
+        const ParticleSet& particles = pass.particles;
+        ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
+        const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+        const PairState s{particles.position[i], particles.position[j], particles.velocity[i], particles.velocity[j],
+                          particles.spin[i],     particles.spin[j],     particles.radius[i],   particles.radius[j]};
+        const PairKinematics kin = pair_kinematics(s, dt);
+        const BondConstants& bc = pass.constants[static_cast<std::size_t>(k)];
+        const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
+        double* side = side_data + static_cast<std::size_t>(k) * stride;
+        const BondStepResult r = FlatJointLaw::step(contexts[b.family_pair], b, side, sec, bc.stiffness, kin, breaks);
+        e.stored += r.stored;
+        e.released += r.released;
+        e.damage += r.damage;
+        e.slip += r.slip;
+        for (const BondBreak& x : breaks)
+            broken[static_cast<std::size_t>(blk)].push_back({pass.step, pass.time, static_cast<std::int32_t>(k), b.i, b.j, x.mode,
+                                                             s.xa + kin.arm_a + x.offset, kin.normal, sec.radius, x.tensile_stress,
+                                                             x.shear_stress, x.element});
+        breaks.clear();
+        if (r.failure != BondState::intact) return;
+        PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
+        out.force_j += r.force_j;
+        out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
+    }
+};
+
+}  // namespace
+
+BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
+    FlatJointPass joints(pass, dt);
+    for_each_block(static_cast<std::int64_t>(pass.bonds.size()),
+                   [&](std::int64_t begin, std::int64_t end, std::int64_t blk) { joints.block(begin, end, blk); });
+    for (auto& list : joints.broken) pass.breaks.insert(pass.breaks.end(), list.begin(), list.end());
+    return ordered_sum(joints.partial);
 }
 
 }  // namespace gradem

@@ -306,19 +306,15 @@ double physical_memory_bytes() {
     return static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
 }
 
-Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec& spec, std::uint64_t seed,
-                   PasteReport& report) {
-    if (auto why = spec.invalid_reason()) throw std::invalid_argument(*why);
-    if (sand.position.empty()) throw std::invalid_argument("paste fill: empty sand packing");
-    const auto start = std::chrono::steady_clock::now();
-    report = {};
-    report.mix_sand_fraction = mix.sand;
-    report.mix_paste_fraction = mix.paste;
-    report.mix_air_fraction = mix.air;
-    const auto box_volume = [](const Packing& k) {
-        const Vec3 e = k.box_hi - k.box_lo;
-        return e.x * e.y * e.z;
-    };
+namespace {
+
+double box_volume(const Packing& k) {
+    const Vec3 e = k.box_hi - k.box_lo;
+    return e.x * e.y * e.z;
+}
+
+/// The sand's volume [m^3]; its diameter range and packed fraction into the report.
+double measure_sand(const Packing& sand, PasteReport& report) {
     double sand_volume = 0.0;
     report.sand_d_min = std::numeric_limits<double>::infinity();
     for (double r : sand.radius) {
@@ -327,7 +323,12 @@ Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec
         report.sand_d_max = std::max(report.sand_d_max, 2.0 * r);
     }
     report.packed_sand_fraction = sand_volume / box_volume(sand);
-    // 1. dilate to the mix's sand fraction.
+    return sand_volume;
+}
+
+/// 1. The sand dilated to the mix's sand fraction; refused when the mix's paste cannot fill
+///    the packed sand's pore space.
+Packing dilated_to_mix(const Packing& sand, const MixFractions& mix, double sand_volume, PasteReport& report) {
     if (mix.sand > report.packed_sand_fraction)
         throw std::invalid_argument(
             "the mix design's sand fraction " + fmt(mix.sand) + " exceeds the packed sand's " +
@@ -337,12 +338,14 @@ Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec
     Packing out = sand;
     report.dilation = std::cbrt(report.packed_sand_fraction / mix.sand);
     dilate(out, report.dilation);
-    const double volume = box_volume(out);
-    report.sand_fraction = sand_volume / volume;
-    // 2. memory estimate before allocating, then the sizes.
-    const double paste_particle_volume = mix.paste * volume * spec.solid_fraction;
-    const double expected = expected_paste_count(spec, paste_particle_volume);
-    report.estimated_bytes = estimated_specimen_bytes(expected + static_cast<double>(sand.position.size()));
+    report.sand_fraction = sand_volume / box_volume(out);
+    return out;
+}
+
+/// 2. The memory estimate of `expected` paste particles beside the sand, before allocating:
+///    PasteMemoryError over spec.memory_fraction of this machine's memory.
+void check_memory(const PasteSpec& spec, double expected, std::size_t sand_count, PasteReport& report) {
+    report.estimated_bytes = estimated_specimen_bytes(expected + static_cast<double>(sand_count));
     const double limit = spec.memory_fraction * physical_memory_bytes();
     if (report.estimated_bytes > limit)
         throw PasteMemoryError("paste.min_diameter_mm = " + fmt(spec.min_diameter * 1e3) + ": about " + fmt(expected, 3) +
@@ -351,9 +354,12 @@ Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec
                                fmt(spec.memory_fraction, 2) + " x this machine's " +
                                fmt(physical_memory_bytes() / 1e9, 3) +
                                " GB; expected a larger paste.min_diameter_mm or a smaller genesis.edge_mm");
-    const std::vector<double> diameters = paste_diameters(spec, paste_particle_volume, seed);
-    if (diameters.empty()) throw std::invalid_argument("paste fill: no paste particle fits the paste volume");
-    // 3. RSA.
+}
+
+/// 3-4. The paste particles placed among the dilated sand (RSA), grown and relaxed, the
+///      remaining overlaps shrunk away and measured.
+Arrays placed_paste(const Packing& out, const std::vector<double>& diameters, const PasteSpec& spec, std::uint64_t seed,
+                    PasteReport& report) {
     Arrays a;
     a.x = out.position;
     a.r = out.radius;
@@ -364,7 +370,6 @@ Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec
     a.hi = out.box_hi;
     const std::size_t sand_count = a.x.size();
     report.rsa_failures = place_rsa(a, sand_count, diameters, spec, seed);
-    // 4. growth and relaxation.
     report.growth_reached = grow_and_relax(a, sand_count, spec, report);
     std::vector<ParticlePair> pairs;
     make_neighbor_search()->find_pairs(a.x, a.r, 0.0, pairs);
@@ -373,7 +378,13 @@ Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec
     const Overlaps o = measure(a, pairs);
     report.max_overlap = std::max(0.0, o.any);
     report.max_overlap_sand = std::max(0.0, o.paste_sand);
-    // 5. Morton order over everything.
+    return a;
+}
+
+/// 5. Everything into `out` in Morton order, and the specimen's fractions into the report.
+void write_specimen(const Arrays& a, std::size_t sand_count, const MixFractions& mix, const PasteSpec& spec, double sand_volume,
+                    Packing& out, PasteReport& report) {
+    const double volume = box_volume(out);
     const std::vector<std::int32_t> order = morton_order(a.x, a.lo, a.hi);
     out.position = permuted(a.x, order);
     out.radius = permuted(a.r, order);
@@ -394,6 +405,27 @@ Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec
     report.void_fraction = 1.0 - report.sand_fraction - report.paste_fraction;
     out.porosity = 1.0 - (sand_volume + paste_volume) / volume;
     out.mean_coordination = 0.0;  // not measured for the paste specimen
+}
+
+}  // namespace
+
+Packing fill_paste(const Packing& sand, const MixFractions& mix, const PasteSpec& spec, std::uint64_t seed,
+                   PasteReport& report) {
+    if (auto why = spec.invalid_reason()) throw std::invalid_argument(*why);
+    if (sand.position.empty()) throw std::invalid_argument("paste fill: empty sand packing");
+    const auto start = std::chrono::steady_clock::now();
+    report = {};
+    report.mix_sand_fraction = mix.sand;
+    report.mix_paste_fraction = mix.paste;
+    report.mix_air_fraction = mix.air;
+    const double sand_volume = measure_sand(sand, report);
+    Packing out = dilated_to_mix(sand, mix, sand_volume, report);
+    const double paste_particle_volume = mix.paste * box_volume(out) * spec.solid_fraction;
+    check_memory(spec, expected_paste_count(spec, paste_particle_volume), sand.position.size(), report);
+    const std::vector<double> diameters = paste_diameters(spec, paste_particle_volume, seed);
+    if (diameters.empty()) throw std::invalid_argument("paste fill: no paste particle fits the paste volume");
+    const Arrays a = placed_paste(out, diameters, spec, seed, report);
+    write_specimen(a, sand.position.size(), mix, spec, sand_volume, out, report);
     out.edge_over_d50 = sand.edge_over_d50 * report.dilation;
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
