@@ -78,8 +78,8 @@ int calibrate_and_report(const cal::CalibrationProblem& problem, const cal::Cube
         [tty, notes](const std::string& line) { std::fprintf(notes, "%scalibrate: %s\n", tty ? "\r" : "", line.c_str()); },
         [&expected](const cal::Progress& p) { print_progress(p, expected); });
     if (tty) std::fprintf(notes, "\n");
-    cal::write_calibration_outputs(problem, result);
-    std::fprintf(con.text(), "%s\n", cal::brief_report(problem, result).c_str());
+    report::write_calibration_outputs(problem, result);
+    std::fprintf(con.text(), "%s\n", report::brief_report(problem, result).c_str());
     std::fprintf(con.text(), "results in %s\n", problem.out_dir.c_str());
     report::write_html_report_or_warn(report::ReportKind::calibrate, problem.out_dir, con.announce(), con.notes_stream());
     std::fflush(stdout);

@@ -10,7 +10,7 @@ namespace gradem::app {
 namespace {
 
 constexpr CommandFactory kFactories[] = {
-    {"lab", [] { return lab::make_lab_command(write_lab_report); }},
+    {"lab", [] { return make_lab_command(write_lab_report); }},
     {"specimen", make_specimen_command},
     {"compress", make_compress_command},
     {"tension", make_tension_command},

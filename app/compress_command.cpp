@@ -60,7 +60,7 @@ exp::CubeTestResult run_with_progress(const exp::Packing& packing, const exp::Cu
     return r;
 }
 
-void print_summary(const exp::CubeTestResult& r, const std::optional<exp::RateCheck>& check, const std::string& out) {
+void print_summary(const exp::CubeTestResult& r, const std::optional<report::RateCheck>& check, const std::string& out) {
     std::FILE* text = console().text();
     std::int64_t tension = 0, shear = 0;
     for (const BreakEvent& e : r.cracks) ++(e.mode == BondState::broken_shear ? shear : tension);
@@ -102,20 +102,20 @@ int CompressCommand::run() {
 
     exp::CubeTestSpec spec = config.test;
     spec.loading.strain_rate = exp::strain_rate_for(config, packing);
-    if (config.vtk) spec.snapshot = exp::vtk_snapshots(config.out_dir / "vtk", config.vtk_every);
+    if (config.vtk) spec.snapshot = report::vtk_snapshots(config.out_dir / "vtk", config.vtk_every);
     const exp::CubeTestResult result = run_with_progress(packing, config, spec, "compress");
 
-    std::optional<exp::RateCheck> check;
+    std::optional<report::RateCheck> check;
     bool half_diverged = false;
     if (check_rate_) {
         exp::CubeTestSpec half = spec;
         half.loading.strain_rate = 0.5 * spec.loading.strain_rate;
         half.snapshot = {};
         const exp::CubeTestResult slow = run_with_progress(packing, config, half, "compress (half rate)");
-        check = exp::compare_rates(result, slow, spec.loading.strain_rate);
+        check = report::compare_rates(result, slow, spec.loading.strain_rate);
         half_diverged = slow.diverged();
     }
-    exp::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check,
+    report::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check,
                             paste ? &*paste : nullptr);
     print_summary(result, check, config.out_dir.string());
     if (paste) print_paste_summary(*paste, result);

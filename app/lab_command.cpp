@@ -14,7 +14,10 @@
 #include "lab_data/text.hpp"
 #include "reports/lab_report.hpp"
 
-namespace gradem::lab {
+namespace gradem::app {
+
+using namespace gradem::lab;  // the readers and statistics the command drives
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -199,9 +202,9 @@ public:
         // --json prints the results instead of writing them, unless --out asks for the files too.
         const bool write = c_.write && (!con.json() || out_->count() > 0);
         const LabStats lab = analyse(c_);
-        if (write) write_lab_outputs(c_.out, lab);
-        if (con.json()) app::Console::print_json(lab_stats_to_json(lab).dump(2));
-        else print_lab_report(con.text_stream(), lab, c_.per_cube || lab.source == "files");
+        if (write) report::write_lab_outputs(c_.out, lab);
+        if (con.json()) app::Console::print_json(report::lab_stats_to_json(lab).dump(2));
+        else report::print_lab_report(con.text_stream(), lab, c_.per_cube || lab.source == "files");
         if (write && !con.json()) con.text_stream() << "\nwrote " << (c_.out / "lab_results.json").string() << " and CSV tables\n";
         if (write && after_outputs_) after_outputs_(c_.out, con.announce());
         return common::exit_success;
@@ -229,4 +232,4 @@ int run_lab_command(const std::vector<std::string>& args, const AfterLabOutputs&
     return app::run_command(app::command_info("lab"), command, args);
 }
 
-}  // namespace gradem::lab
+}  // namespace gradem::app

@@ -10,10 +10,8 @@
 #include <vector>
 
 namespace gradem::app {
-class Command;
-}  // namespace gradem::app
 
-namespace gradem::lab {
+class Command;
 
 /// Called once the output files are written, with their folder and the stream for messages (the
 /// app makes report.html there).
@@ -25,6 +23,6 @@ using AfterLabOutputs = std::function<void(const std::filesystem::path& out_dir,
 int run_lab_command(const std::vector<std::string>& args, const AfterLabOutputs& after_outputs = {});
 
 /// The lab command for the command table (app/command_table.cpp).
-std::unique_ptr<app::Command> make_lab_command(AfterLabOutputs after_outputs);
+std::unique_ptr<Command> make_lab_command(AfterLabOutputs after_outputs);
 
-}  // namespace gradem::lab
+}  // namespace gradem::app

@@ -68,19 +68,19 @@ exp::TensionTestResult run_with_progress(const exp::Packing& packing, const exp:
 }
 
 // The compression macro.json of the same output folder, if there is a matching one.
-std::optional<exp::CompressionReference> compression_beside(const exp::CubeConfig& c, const exp::Packing& packing) {
+std::optional<report::CompressionReference> compression_beside(const exp::CubeConfig& c, const exp::Packing& packing) {
     const fs::path beside = c.out_dir / "macro.json";
     if (!fs::exists(beside)) return std::nullopt;
     try {
-        return exp::read_compression_reference(beside, c, packing);
+        return report::read_compression_reference(beside, c, packing);
     } catch (const common::InputError& e) {
         std::fprintf(console().notes(), "tension: no σc/σt: %s\n", e.what());
         return std::nullopt;
     }
 }
 
-void print_summary(const exp::TensionTestResult& t, const std::optional<exp::RateCheck>& check,
-                   const std::optional<exp::CompressionReference>& compression, const std::string& out) {
+void print_summary(const exp::TensionTestResult& t, const std::optional<report::RateCheck>& check,
+                   const std::optional<report::CompressionReference>& compression, const std::string& out) {
     std::FILE* text = console().text();
     const exp::CubeTestResult& r = t.cube;
     std::int64_t tension = 0, shear = 0;
@@ -117,28 +117,28 @@ int TensionCommand::run() {
     const fs::path out_dir = config.out_dir / "tension";
 
     const lab::GradationCurve curve = exp::load_gradation(config);
-    if (!compression_.empty()) exp::check_compression_file(compression_);  // before genesis; matched to it below
+    if (!compression_.empty()) report::check_compression_file(compression_);  // before genesis; matched to it below
     inputs_checked();
     const exp::Packing packing = load_test_packing(config, curve, "tension");
 
-    std::optional<exp::CompressionReference> compression;  // --compression: matched to the packing before the long run
-    if (!compression_.empty()) compression = exp::read_compression_reference(compression_, config, packing);
+    std::optional<report::CompressionReference> compression;  // --compression: matched to the packing before the long run
+    if (!compression_.empty()) compression = report::read_compression_reference(compression_, config, packing);
     spec.test.loading.strain_rate = exp::tension_strain_rate(config, tension, packing);
-    if (config.vtk) spec.test.snapshot = exp::vtk_snapshots(out_dir / "vtk", config.vtk_every);
+    if (config.vtk) spec.test.snapshot = report::vtk_snapshots(out_dir / "vtk", config.vtk_every);
     const exp::TensionTestResult result = run_with_progress(packing, config, spec, "tension");
 
-    std::optional<exp::RateCheck> check;
+    std::optional<report::RateCheck> check;
     bool half_diverged = false;
     if (check_rate_) {
         exp::TensionTestSpec half = spec;
         half.test.loading.strain_rate = 0.5 * spec.test.loading.strain_rate;
         half.test.snapshot = {};
         const exp::TensionTestResult slow = run_with_progress(packing, config, half, "tension (half rate)");
-        check = exp::compare_rates(result.cube, slow.cube, spec.test.loading.strain_rate);
+        check = report::compare_rates(result.cube, slow.cube, spec.test.loading.strain_rate);
         half_diverged = slow.diverged();
     }
     if (!compression) compression = compression_beside(config, packing);
-    exp::write_tension_outputs(out_dir, result, config, spec, packing, spec.test.loading.strain_rate, check, compression);
+    report::write_tension_outputs(out_dir, result, config, spec, packing, spec.test.loading.strain_rate, check, compression);
     print_summary(result, check, compression, out_dir.string());
     if (con.json()) Console::print_json(common::read_file_bytes(out_dir / "macro.json"));
     if (result.diverged() || half_diverged) {

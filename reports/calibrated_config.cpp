@@ -9,7 +9,10 @@
 
 #include "experiments/config/material_table.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
+
+using namespace gradem::cal;  // the calibration types these outputs are written from
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -122,4 +125,4 @@ std::vector<std::pair<fs::path, std::string>> calibrated_cube_configs(const Cali
     return files;
 }
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

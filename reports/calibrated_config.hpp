@@ -12,10 +12,10 @@
 
 #include "calibrate/calibration.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
 
 /// (path, text) of calibrated-<sand>.toml for every sand a stage with a solution fitted or predicted.
-std::vector<std::pair<std::filesystem::path, std::string>> calibrated_cube_configs(const CalibrationProblem& problem,
-                                                                                    const CalibrationResult& result);
+std::vector<std::pair<std::filesystem::path, std::string>> calibrated_cube_configs(const cal::CalibrationProblem& problem,
+                                                                                    const cal::CalibrationResult& result);
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

@@ -13,7 +13,10 @@
 #include "common/number_format.hpp"
 #include "experiments/config/material_table.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
+
+using namespace gradem::cal;  // the calibration types these outputs are written from
+
 namespace {
 
 using nlohmann::json;
@@ -709,4 +712,4 @@ void write_calibration_outputs(const CalibrationProblem& p, const CalibrationRes
     common::write_files_atomically(calibrated_cube_configs(p, r));
 }
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

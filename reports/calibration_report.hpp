@@ -14,15 +14,15 @@
 
 #include "calibrate/calibration.hpp"
 
-namespace gradem::cal {
+namespace gradem::report {
 
-nlohmann::json summary_json(const CalibrationProblem& problem, const CalibrationResult& result);
-std::string summary_markdown(const CalibrationProblem& problem, const CalibrationResult& result);
-std::string convergence_csv(const CalibrationProblem& problem, const CalibrationResult& result);
-std::string curves_csv(const CalibrationProblem& problem, const CalibrationResult& result);
-std::string brief_report(const CalibrationProblem& problem, const CalibrationResult& result);
+nlohmann::json summary_json(const cal::CalibrationProblem& problem, const cal::CalibrationResult& result);
+std::string summary_markdown(const cal::CalibrationProblem& problem, const cal::CalibrationResult& result);
+std::string convergence_csv(const cal::CalibrationProblem& problem, const cal::CalibrationResult& result);
+std::string curves_csv(const cal::CalibrationProblem& problem, const cal::CalibrationResult& result);
+std::string brief_report(const cal::CalibrationProblem& problem, const cal::CalibrationResult& result);
 
 /// Writes the files above into problem.out_dir.
-void write_calibration_outputs(const CalibrationProblem& problem, const CalibrationResult& result);
+void write_calibration_outputs(const cal::CalibrationProblem& problem, const cal::CalibrationResult& result);
 
-}  // namespace gradem::cal
+}  // namespace gradem::report

@@ -12,7 +12,10 @@
 #include "experiments/config/material_table.hpp"
 #include "reports/vtk_output.hpp"
 
-namespace gradem::exp {
+namespace gradem::report {
+
+using namespace gradem::exp;  // the virtual tests' types these outputs are written from
+
 namespace {
 
 using json = nlohmann::ordered_json;  // keys in the order written: the headline numbers first
@@ -235,4 +238,4 @@ void write_cube_outputs(const std::filesystem::path& dir, const CubeTestResult& 
     common::write_file_atomically(dir / "macro.json", macro_json(r, c, k, strain_rate, rate_check, paste));
 }
 
-}  // namespace gradem::exp
+}  // namespace gradem::report

@@ -22,7 +22,7 @@
 #include "experiments/specimen/genesis.hpp"
 #include "experiments/paste/paste_fill.hpp"
 
-namespace gradem::exp {
+namespace gradem::report {
 
 /// The quasi-static check: the same test at half the strain rate.
 struct RateCheck {
@@ -36,25 +36,25 @@ struct RateCheck {
 };
 
 /// Compares a run at the configured rate with one at half of it.
-RateCheck compare_rates(const CubeTestResult& at_rate, const CubeTestResult& at_half_rate, double strain_rate);
+RateCheck compare_rates(const exp::CubeTestResult& at_rate, const exp::CubeTestResult& at_half_rate, double strain_rate);
 
 /// The three CSV/JSON texts (exposed for tests) and the writer.
-std::string load_curve_csv(const CubeTestResult& result);
-std::string cracks_csv(const CubeTestResult& result);
-std::string macro_json(const CubeTestResult& result, const CubeConfig& config, const Packing& packing,
+std::string load_curve_csv(const exp::CubeTestResult& result);
+std::string cracks_csv(const exp::CubeTestResult& result);
+std::string macro_json(const exp::CubeTestResult& result, const exp::CubeConfig& config, const exp::Packing& packing,
                        double strain_rate, const std::optional<RateCheck>& rate_check = {},
-                       const PasteReport* paste = nullptr);
+                       const exp::PasteReport* paste = nullptr);
 
 /// A CubeTestSpec::snapshot that writes ParaView files into `dir` at the first recorded point
 /// and then every `every`-th one (0: every 20th): particles_NNNNNN.vtp (with displacement since
 /// the first snapshot), bonds_NNNNNN.vtp, cracks_NNNNNN.vtp, and cube.pvd tying them together
 /// (rewritten after each snapshot, so an interrupted run keeps a valid series).
-SnapshotCallback vtk_snapshots(const std::filesystem::path& dir, int every);
+exp::SnapshotCallback vtk_snapshots(const std::filesystem::path& dir, int every);
 
 /// Writes load_curve.csv, cracks.csv and macro.json into `dir` (created), each atomically.
 /// `strain_rate` [1/s] is the rate the test ran at (resolved from "auto").
-void write_cube_outputs(const std::filesystem::path& dir, const CubeTestResult& result, const CubeConfig& config,
-                        const Packing& packing, double strain_rate, const std::optional<RateCheck>& rate_check = {},
-                        const PasteReport* paste = nullptr);
+void write_cube_outputs(const std::filesystem::path& dir, const exp::CubeTestResult& result, const exp::CubeConfig& config,
+                        const exp::Packing& packing, double strain_rate, const std::optional<RateCheck>& rate_check = {},
+                        const exp::PasteReport* paste = nullptr);
 
-}  // namespace gradem::exp
+}  // namespace gradem::report

@@ -3,7 +3,10 @@
 #include "common/json_number.hpp"
 #include "reports/lab_report.hpp"
 
-namespace gradem::lab {
+namespace gradem::report {
+
+using namespace gradem::lab;  // the lab statistics' types these outputs are written from
+
 namespace {
 
 using nlohmann::json;
@@ -172,4 +175,4 @@ nlohmann::json lab_stats_to_json(const LabStats& lab) {
     return j;
 }
 
-}  // namespace gradem::lab
+}  // namespace gradem::report

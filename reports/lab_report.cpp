@@ -9,7 +9,10 @@
 #include "common/number_format.hpp"
 #include "reports/lab_report.hpp"
 
-namespace gradem::lab {
+namespace gradem::report {
+
+using namespace gradem::lab;  // the lab statistics' types these outputs are written from
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -322,4 +325,4 @@ void print_lab_report(std::ostream& out, const LabStats& lab, bool per_cube) {
     if (per_cube && !lab.tensile_tests.empty()) print_tensile_tests(out, lab);
 }
 
-}  // namespace gradem::lab
+}  // namespace gradem::report

@@ -10,7 +10,10 @@
 #include "common/json_file.hpp"
 #include "common/json_number.hpp"
 
-namespace gradem::exp {
+namespace gradem::report {
+
+using namespace gradem::exp;  // the virtual tests' types these outputs are written from
+
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -125,4 +128,4 @@ void write_tension_outputs(const std::filesystem::path& dir, const TensionTestRe
                                   tension_macro_json(r, c, spec, k, strain_rate, rate_check, compression));
 }
 
-}  // namespace gradem::exp
+}  // namespace gradem::report

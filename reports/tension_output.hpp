@@ -18,7 +18,7 @@
 #include "experiments/virtual_tests/tension_test.hpp"
 #include "reports/cube_output.hpp"
 
-namespace gradem::exp {
+namespace gradem::report {
 
 /// The compression result a tension run is compared with.
 struct CompressionReference {
@@ -36,19 +36,19 @@ void check_compression_file(const std::filesystem::path& macro_json_file);
 /// Reads a compression macro.json and checks that it is of the same material and specimen as
 /// the tension run (its "material" and "specimen" blocks equal the ones this run writes).
 /// Throws common::InputError naming the file and what differs or is missing.
-CompressionReference read_compression_reference(const std::filesystem::path& macro_json_file, const CubeConfig& config,
-                                                const Packing& packing);
+CompressionReference read_compression_reference(const std::filesystem::path& macro_json_file, const exp::CubeConfig& config,
+                                                const exp::Packing& packing);
 
 /// The macro.json text (exposed for tests); the CSVs are cube_output's load_curve_csv and
 /// cracks_csv of result.cube.
-std::string tension_macro_json(const TensionTestResult& result, const CubeConfig& config, const TensionTestSpec& spec,
-                               const Packing& packing, double strain_rate, const std::optional<RateCheck>& rate_check = {},
+std::string tension_macro_json(const exp::TensionTestResult& result, const exp::CubeConfig& config, const exp::TensionTestSpec& spec,
+                               const exp::Packing& packing, double strain_rate, const std::optional<RateCheck>& rate_check = {},
                                const std::optional<CompressionReference>& compression = {});
 
 /// Writes load_curve.csv, cracks.csv and macro.json into `dir` (created), each atomically, macro.json last.
-void write_tension_outputs(const std::filesystem::path& dir, const TensionTestResult& result, const CubeConfig& config,
-                           const TensionTestSpec& spec, const Packing& packing, double strain_rate,
+void write_tension_outputs(const std::filesystem::path& dir, const exp::TensionTestResult& result, const exp::CubeConfig& config,
+                           const exp::TensionTestSpec& spec, const exp::Packing& packing, double strain_rate,
                            const std::optional<RateCheck>& rate_check = {},
                            const std::optional<CompressionReference>& compression = {});
 
-}  // namespace gradem::exp
+}  // namespace gradem::report

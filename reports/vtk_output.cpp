@@ -10,7 +10,7 @@
 
 #include "common/atomic_file.hpp"
 
-namespace gradem::exp {
+namespace gradem::report {
 
 namespace fs = std::filesystem;
 
@@ -431,4 +431,4 @@ void PvdSeries::write() const {
     common::write_file_atomically(pvd_path_, out);
 }
 
-}  // namespace gradem::exp
+}  // namespace gradem::report

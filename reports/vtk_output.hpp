@@ -28,7 +28,7 @@
 #include "core/world.hpp"
 #include "core/world_types.hpp"
 
-namespace gradem::exp {
+namespace gradem::report {
 
 enum class VtkEncoding : std::uint8_t { ascii, base64 };
 
@@ -76,4 +76,4 @@ private:
 /// Standard base64 (RFC 4648, '+' '/', '=' padding) of `size` bytes.
 std::string base64_encode(const void* data, std::size_t size);
 
-}  // namespace gradem::exp
+}  // namespace gradem::report

@@ -99,7 +99,7 @@ py::object calibrate(const std::string& path, std::optional<int> max_runs, std::
     in_background(
         [&] {
             result = cal::run_calibration(problem, *model, log_hook(log, cancel), progress_hook(progress, cancel));
-            cal::write_calibration_outputs(problem, result);
+            report::write_calibration_outputs(problem, result);
         },
         cancel);
     if (report) html_report(report::ReportKind::calibrate, problem.out_dir);

@@ -59,7 +59,7 @@ py::object read(const std::vector<std::string>& inputs) {
         stats = analyse(inputs);
     }
     warnings.emit();
-    py::object doc = json_to_python(lab::lab_stats_to_json(stats));
+    py::object doc = json_to_python(report::lab_stats_to_json(stats));
     py::list cubes = doc["cubes"];
     for (std::size_t k = 0; k < stats.cubes.size() && k < cubes.size(); ++k) cubes[k]["curve"] = curve_dict(stats.cubes[k].curve);
     return doc;

@@ -217,7 +217,7 @@ py::dict compress(const Config& config, std::optional<int> threads, const py::ob
     const exp::CubeConfig& c = config.cube();
     std::optional<Specimen> s;
     std::optional<exp::CubeTestResult> result;
-    std::optional<exp::RateCheck> rate;
+    std::optional<report::RateCheck> rate;
     double strain_rate = 0.0;
     std::string macro;
     {
@@ -231,11 +231,11 @@ py::dict compress(const Config& config, std::optional<int> threads, const py::ob
             exp::CubeTestSpec half = spec;
             half.loading.strain_rate = 0.5 * spec.loading.strain_rate;
             const exp::CubeTestResult slow = exp::run_cube_test(s->packing, c.material, half, hook(check, progress));
-            rate = exp::compare_rates(*result, slow, strain_rate);
+            rate = report::compare_rates(*result, slow, strain_rate);
         }
         const exp::PasteReport* paste = s->paste ? &*s->paste : nullptr;
-        macro = exp::macro_json(*result, c, s->packing, strain_rate, rate, paste);
-        if (!out.empty()) exp::write_cube_outputs(out, *result, c, s->packing, strain_rate, rate, paste);
+        macro = report::macro_json(*result, c, s->packing, strain_rate, rate, paste);
+        if (!out.empty()) report::write_cube_outputs(out, *result, c, s->packing, strain_rate, rate, paste);
     }
     warnings.emit();
     py::dict d;
@@ -255,17 +255,17 @@ py::dict tension(const Config& config, std::optional<int> threads, const py::obj
     LabWarnings warnings;
     const RunThreads run_threads(threads);
     const exp::CubeConfig& c = config.cube();
-    if (!compression.empty()) exp::check_compression_file(compression);  // before genesis, as the command
+    if (!compression.empty()) report::check_compression_file(compression);  // before genesis, as the command
     std::optional<Specimen> s;
     std::optional<exp::TensionTestResult> result;
-    std::optional<exp::RateCheck> rate;
-    std::optional<exp::CompressionReference> reference;
+    std::optional<report::RateCheck> rate;
+    std::optional<report::CompressionReference> reference;
     double strain_rate = 0.0;
     std::string macro;
     {
         py::gil_scoped_release release;
         s = specimen_of(c);
-        if (!compression.empty()) reference = exp::read_compression_reference(compression, c, s->packing);
+        if (!compression.empty()) reference = report::read_compression_reference(compression, c, s->packing);
         exp::TensionTestSpec spec = config.tension().spec;
         strain_rate = spec.test.loading.strain_rate = exp::tension_strain_rate(c, config.tension(), s->packing);
         SignalCheck check;
@@ -274,10 +274,10 @@ py::dict tension(const Config& config, std::optional<int> threads, const py::obj
             exp::TensionTestSpec half = spec;
             half.test.loading.strain_rate = 0.5 * spec.test.loading.strain_rate;
             const exp::TensionTestResult slow = exp::run_tension_test(s->packing, c.material, half, hook(check, progress));
-            rate = exp::compare_rates(result->cube, slow.cube, strain_rate);
+            rate = report::compare_rates(result->cube, slow.cube, strain_rate);
         }
-        macro = exp::tension_macro_json(*result, c, spec, s->packing, strain_rate, rate, reference);
-        if (!out.empty()) exp::write_tension_outputs(fs::path(out) / "tension", *result, c, spec, s->packing, strain_rate, rate, reference);
+        macro = report::tension_macro_json(*result, c, spec, s->packing, strain_rate, rate, reference);
+        if (!out.empty()) report::write_tension_outputs(fs::path(out) / "tension", *result, c, spec, s->packing, strain_rate, rate, reference);
     }
     warnings.emit();
     py::dict d;

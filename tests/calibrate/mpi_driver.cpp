@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
                 const cal::CalibrationResult r = cal::run_calibration(problem, model, executor, [](const std::string& line) {
                     std::fprintf(stderr, "driver: %s\n", line.c_str());
                 });
-                cal::write_calibration_outputs(problem, r);
+                report::write_calibration_outputs(problem, r);
                 return 0;
             },
             identity);

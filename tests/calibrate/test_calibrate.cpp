@@ -95,7 +95,7 @@ TEST_CASE("twin experiment, analytic stand-in: the scaling path recovers known p
     CHECK(r.runs_used <= 400);
     REQUIRE(st.uncertainty.computed);
     CHECK(st.uncertainty.singular_values.size() == 4);
-    for (const auto& row : cal::summary_json(problem, r)["targets"]) CHECK(std::fabs(row["rel_error"].get<double>()) < 0.01);
+    for (const auto& row : report::summary_json(problem, r)["targets"]) CHECK(std::fabs(row["rel_error"].get<double>()) < 0.01);
 }
 
 TEST_CASE("twin experiment, analytic stand-in: Ceres LM recovers every parameter, BOBYQA closes in", "[calibrate]") {
@@ -117,7 +117,7 @@ TEST_CASE("twin experiment, analytic stand-in: Ceres LM recovers every parameter
         INFO("stop: " << r.stages[0].solution.stop_reason << ", runs " << r.runs_used << ", objective " << start << " -> "
                       << r.stages[0].solution.best_objective);
         CHECK(r.stages[0].solution.best_objective < 0.02 * start);
-        for (const auto& row : cal::summary_json(problem, r)["targets"])
+        for (const auto& row : report::summary_json(problem, r)["targets"])
             if (row["quantity"] != "strain_at_peak") CHECK(std::fabs(row["rel_error"].get<double>()) < 0.05);
     }
 }
@@ -292,7 +292,7 @@ TEST_CASE("study protocol: calibrate on one sand, predict the other", "[calibrat
     REQUIRE(st.predicted == std::vector<std::size_t>{1});
     REQUIRE(st.outcome(1) != nullptr);
     // With the true shape parameters fixed, the prediction of the other sand is right too.
-    const nlohmann::json j = cal::summary_json(problem, r);
+    const nlohmann::json j = report::summary_json(problem, r);
     int predicted_rows = 0;
     for (const auto& row : j["targets"])
         if (row["role"] == "predicted") {
@@ -361,7 +361,7 @@ TEST_CASE("twin experiment, soft bond: the shape search moves the softening fact
     CHECK(tried.size() >= 4);  // BOBYQA's shape search varies ζ
     INFO("runs " << r.runs_used << ", ζ " << best_of(r)[*zeta]);
     CHECK(best_of(r)[*zeta] == Approx(0.25).epsilon(0.03));
-    const nlohmann::json j = cal::summary_json(problem, r);
+    const nlohmann::json j = report::summary_json(problem, r);
     CHECK(j["bond_model"] == "soft_bond");
     CHECK(j["bond_model_parameters"]["cut_fraction"].get<double>() == 0.2);
     CHECK(j["bond_model_parameters"]["softening_factor"].get<double>() == best_of(r)[*zeta]);
@@ -377,7 +377,7 @@ TEST_CASE("twin experiment, soft bond: the shape search moves the softening fact
         CHECK(std::fabs(d["rel_error"].get<double>()) < 0.02);  // the soft bond reaches the lab's D
         CHECK(d["lab"].get<double>() > 1.5);                      // and it is far above the parallel bond's
     }
-    const std::string md = cal::summary_markdown(problem, r);
+    const std::string md = report::summary_markdown(problem, r);
     CHECK(md.find("bond model **soft_bond** (bond_replaces_contact = 1, cut_fraction = 0.2, softening_factor = 0.25") != std::string::npos);
     CHECK(md.find("D = E·ε_peak/σ_peak lab") != std::string::npos);
 }

@@ -47,7 +47,7 @@ TEST_CASE("twin experiment, real DEM: modulus and peak within 3 %, parameters wi
     INFO("recovered E* " << got.at(0) << " GPa, tensile strength " << got.at(1) << " MPa");
     CHECK(std::fabs(got[0] / 16.0 - 1.0) < 0.10);
     CHECK(std::fabs(got[1] / 12.0 - 1.0) < 0.10);
-    for (const auto& row : cal::summary_json(problem, r)["targets"])
+    for (const auto& row : report::summary_json(problem, r)["targets"])
         if (row["quantity"] != "strain_at_peak") {
             INFO(row.dump());
             CHECK(std::fabs(row["rel_error"].get<double>()) < 0.03);
@@ -106,7 +106,7 @@ TEST_CASE("explicit paste: a tiny paste calibration runs end to end and recovers
     // calibrated-pre-blended.toml: the base config at the best point, loadable elsewhere (absolute
     // paths), whose cube test is the calibration's run at the best point, bitwise.
     fs::create_directories(problem.out_dir);
-    cal::write_calibration_outputs(problem, r);
+    report::write_calibration_outputs(problem, r);
     const fs::path written = problem.out_dir / "calibrated-pre-blended.toml";
     REQUIRE(fs::exists(written));
     TempDir elsewhere("cal-paste-calibrated");

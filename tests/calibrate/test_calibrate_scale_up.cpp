@@ -67,7 +67,7 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     // high by the size effect) and misses on the larger validation cubes by that effect.
     cal::ValidatedModel plain_model = sized_model(without);
     const cal::CalibrationResult plain = cal::run_calibration(without, plain_model);
-    const nlohmann::json plain_summary = cal::summary_json(without, plain);
+    const nlohmann::json plain_summary = report::summary_json(without, plain);
     CHECK(plain.stages.at(0).result()[0] == Approx(kTruth[0] * kModulusEffect).epsilon(0.03));
     CHECK(rel_error_of(plain_summary, "validation", "pre-blended", "modulus") == Approx(kModulusEffect - 1.0).margin(0.03));
     CHECK(plain_summary["stages"][0]["validation"]["holds"] == false);
@@ -86,7 +86,7 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     CHECK(st.result()[1] == Approx(kTruth[1]).epsilon(0.03));
     CHECK(st.result()[2] == st.solution.best[2]);  // a shape parameter is not touched
     CHECK(st.validation.evaluation.values == st.result());
-    const nlohmann::json summary = cal::summary_json(with, r);
+    const nlohmann::json summary = report::summary_json(with, r);
     for (const std::string& sand : kSands)
         for (const char* q : {"modulus", "peak_stress", "strain_at_peak"}) {
             INFO(sand << " " << q);
@@ -98,13 +98,13 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     CHECK(summary["runs"]["scale_up"] == 4);
     CHECK(summary["stages"][0]["parameters"][0]["value"].get<double>() == st.result()[0]);
     CHECK(summary["stages"][0]["parameters"][0]["fit_value"].get<double>() == st.solution.best[0]);
-    const std::string md = cal::summary_markdown(with, r);
+    const std::string md = report::summary_markdown(with, r);
     CHECK_THAT(md, Catch::Contains("**Scales set** on 5 mm cubes, packing seeds 21, 22"));
-    CHECK_THAT(cal::brief_report(with, r), Catch::Contains("scales set on 5 mm cubes"));
+    CHECK_THAT(report::brief_report(with, r), Catch::Contains("scales set on 5 mm cubes"));
 
     // The written result is the scale-up's: its calibrated configs and the studies that read
     // summary.json run the scale-up edge.
-    cal::write_calibration_outputs(with, r);
+    report::write_calibration_outputs(with, r);
     const cal::CalibratedPoint point = cal::load_calibrated_point(with.out_dir / "summary.json");
     CHECK(point.problem.base.specimen.genesis.edge == Approx(5e-3));
     CHECK(point.values == st.result());

@@ -63,7 +63,7 @@ TEST_CASE("a tension target from the lab pins down what compression alone cannot
     CHECK(value_of(problem, r, "cohesion_ratio") == Approx(kTruthRatio).epsilon(0.02));
     // Every evaluation ran both tests: one tension run per compression run, each in the budget.
     for (const cal::Evaluation& e : r.history) CHECK(e.tension_runs.size() == e.runs.size());
-    const nlohmann::json summary = cal::summary_json(problem, r);
+    const nlohmann::json summary = report::summary_json(problem, r);
     CHECK(summary["tension_target"]["source"] == "lab");
     int tension_rows = 0;
     for (const auto& row : summary["targets"])
@@ -102,7 +102,7 @@ TEST_CASE("an assumed σc/σt: the target is σc,lab / ratio, met when the simul
     CHECK(problem.targets[0].tension.n == 0);
     const cal::CalibrationResult r = cal::run_calibration(problem, *model);
     CHECK(value_of(problem, r, "cohesion_ratio") == Approx(kTruthRatio).epsilon(0.03));
-    const nlohmann::json summary = cal::summary_json(problem, r);
+    const nlohmann::json summary = report::summary_json(problem, r);
     CHECK(summary["tension_target"]["assumed"] == true);
     CHECK(summary["tension_target"]["basis"] == "the stand-in's own ratio (test)");
     for (const auto& row : summary["targets"])
@@ -111,9 +111,9 @@ TEST_CASE("an assumed σc/σt: the target is σc,lab / ratio, met when the simul
             CHECK(row["compressive_to_tensile_ratio"].get<double>() == Approx(ratio).epsilon(0.02));
             CHECK(row["met"] == true);
         }
-    const std::string md = cal::summary_markdown(problem, r);
+    const std::string md = report::summary_markdown(problem, r);
     CHECK_THAT(md, Catch::Contains("ASSUMED σc/σt") && Catch::Contains("the stand-in's own ratio (test)"));
-    CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("sigc/sigt"));
+    CHECK_THAT(report::brief_report(problem, r), Catch::Contains("sigc/sigt"));
 }
 
 TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row pulls β as far as its weight says", "[calibrate][tension]") {
@@ -202,7 +202,7 @@ TEST_CASE("from lab files to the tension target: splitting and flexural exports 
     }
     test::write_text(dir.path / "dataset.toml", toml);
     const lab::LabStats stats = lab::analyse_lab_dataset(dir.path / "dataset.toml");
-    test::write_text(dir.path / "lab_results.json", lab::lab_stats_to_json(stats).dump(1));
+    test::write_text(dir.path / "lab_results.json", report::lab_stats_to_json(stats).dump(1));
     const cal::CalibrationProblem problem = cal::load_calibration_problem(
         test::write_problem(dir.path, "model = \"analytic\"\n", "tension = \"lab\"\n[output]\ndir = \"out\"\n"));
     REQUIRE(problem.targets.size() == 2);

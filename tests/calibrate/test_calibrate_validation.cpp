@@ -48,7 +48,7 @@ TEST_CASE("validation on unseen seeds: run after the fit, apart from the budget,
     CHECK(st.validation.evaluation.values == st.solution.best);
     CHECK(r.runs_used <= problem.solver.max_runs);
     // The stand-in does not depend on the specimen, so the result holds on unseen seeds.
-    const nlohmann::json summary = cal::summary_json(problem, r);
+    const nlohmann::json summary = report::summary_json(problem, r);
     CHECK(summary["stages"][0]["validation"]["holds"] == true);
     int rows = 0;
     for (const auto& t : summary["targets"])
@@ -57,10 +57,10 @@ TEST_CASE("validation on unseen seeds: run after the fit, apart from the budget,
             CHECK(std::fabs(t["rel_error"].get<double>()) < 0.02);
         }
     CHECK(rows == 6);
-    const std::string md = cal::summary_markdown(problem, r);
+    const std::string md = report::summary_markdown(problem, r);
     CHECK(md.find("**Validation**") < md.find("Solver path"));  // the validation leads the stage
     CHECK_THAT(md, Catch::Contains("every target holds on specimens the fit never saw"));
-    CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("validation holds"));
+    CHECK_THAT(report::brief_report(problem, r), Catch::Contains("validation holds"));
     // A second run serves the validation from the ledger as well.
     const cal::CalibrationResult again = cal::run_calibration(problem, *model);
     CHECK(again.stages.at(0).validation.from_ledger == 4);
@@ -76,15 +76,15 @@ TEST_CASE("a result that does not hold on the validation specimens says so plain
     cal::ValidatedModel model(cal::make_analytic_model(2, 0.001), std::make_unique<test::ScaledSpecimenModel>(1.15, 1.0), kSands.size(),
                                     problem.validation.seeds);
     const cal::CalibrationResult r = cal::run_calibration(problem, model);
-    const nlohmann::json summary = cal::summary_json(problem, r);
+    const nlohmann::json summary = report::summary_json(problem, r);
     CHECK(summary["stages"][0]["validation"]["holds"] == false);
     for (const auto& t : summary["targets"])
         if (t["role"] == "validation" && t["quantity"] == "modulus") {
             CHECK(t["rel_error"].get<double>() == Approx(0.15).margin(0.02));
             CHECK(t["met"] == false);
         }
-    CHECK_THAT(cal::summary_markdown(problem, r), Catch::Contains("does NOT hold on specimens the fit never saw"));
-    CHECK_THAT(cal::brief_report(problem, r), Catch::Contains("validation MISSES"));
+    CHECK_THAT(report::summary_markdown(problem, r), Catch::Contains("does NOT hold on specimens the fit never saw"));
+    CHECK_THAT(report::brief_report(problem, r), Catch::Contains("validation MISSES"));
     bool stated = false;
     for (const auto& u : summary["stages"][0]["unmet_targets"])
         stated = stated || u.get<std::string>().find("validation specimens") != std::string::npos;

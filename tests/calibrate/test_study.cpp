@@ -35,7 +35,7 @@ fs::path calibrated_summary(const fs::path& dir) {
     const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
     auto m = cal::make_model(problem);
     const cal::CalibrationResult r = cal::run_calibration(problem, *m);
-    cal::write_calibration_outputs(problem, r);
+    report::write_calibration_outputs(problem, r);
     return dir / "cal" / "summary.json";
 }
 

@@ -39,7 +39,7 @@ cal::CalibrationResult result_with_errors(const cal::CalibrationProblem& p, cons
 
 /// The summary's "met" flag of sand 0's target `quantity`.
 bool met_in_summary(const cal::CalibrationProblem& p, const double (&error)[3], const std::string& quantity) {
-    const nlohmann::json j = cal::summary_json(p, result_with_errors(p, error));
+    const nlohmann::json j = report::summary_json(p, result_with_errors(p, error));
     for (const auto& t : j.at("targets"))
         if (t.at("sand") == p.sands[0] && t.at("quantity") == quantity) return t.at("met").get<bool>();
     FAIL("no target " << quantity);
@@ -72,11 +72,11 @@ TEST_CASE("target tolerances: modulus and peak within 5 %, strain at peak within
     CHECK_FALSE(met_in_summary(p, {0.06, -0.02, 0.08}, "modulus"));
     CHECK(met_in_summary(p, {0.06, -0.02, 0.08}, "peak_stress"));
 
-    const std::string all_met = cal::summary_markdown(p, result_with_errors(p, {0.01, -0.02, 0.08}));
+    const std::string all_met = report::summary_markdown(p, result_with_errors(p, {0.01, -0.02, 0.08}));
     CHECK_THAT(all_met, Catch::Contains("Every target is met (modulus and peak within 5 %, strain at peak within 10 %"));
-    const std::string strain_off = cal::summary_markdown(p, result_with_errors(p, {0.01, -0.02, 0.12}));
+    const std::string strain_off = report::summary_markdown(p, result_with_errors(p, {0.01, -0.02, 0.12}));
     CHECK_THAT(strain_off, Catch::Contains("**Targets not met") && Catch::Contains("strain at peak (fitted)"));
     CHECK_THAT(strain_off, !Catch::Contains("chord modulus (fitted)"));
-    const std::string modulus_off = cal::summary_markdown(p, result_with_errors(p, {0.06, -0.02, 0.08}));
+    const std::string modulus_off = report::summary_markdown(p, result_with_errors(p, {0.06, -0.02, 0.08}));
     CHECK_THAT(modulus_off, Catch::Contains("chord modulus (fitted)") && !Catch::Contains("strain at peak (fitted)"));
 }

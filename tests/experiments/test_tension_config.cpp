@@ -20,6 +20,7 @@
 
 using namespace gradem;
 using namespace gradem::exp;
+using namespace gradem::report;
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 

@@ -17,7 +17,7 @@
 #include "reports/vtk_output.hpp"
 
 using namespace gradem;
-using namespace gradem::exp;
+using namespace gradem::report;
 namespace fs = std::filesystem;
 
 namespace {

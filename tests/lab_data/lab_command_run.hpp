@@ -24,7 +24,7 @@ inline LabRun run_lab(const std::vector<std::string>& args) {
     auto* old_out = std::cout.rdbuf(out.rdbuf());
     auto* old_err = std::cerr.rdbuf(err.rdbuf());
     LabRun r;
-    r.status = lab::run_lab_command(args);
+    r.status = app::run_lab_command(args);
     std::cout.rdbuf(old_out);
     std::cerr.rdbuf(old_err);
     r.out = out.str();

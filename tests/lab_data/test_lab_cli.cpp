@@ -16,6 +16,7 @@
 #include "reports/lab_report.hpp"
 
 using namespace gradem::lab;
+using namespace gradem::report;
 namespace fs = std::filesystem;
 
 namespace {
@@ -92,7 +93,7 @@ TEST_CASE("lab: curves.csv holds every cube's curve, thinned, with its peak, the
     std::vector<fs::path> hooked;
     std::ostringstream sink;
     auto* old_out = std::cout.rdbuf(sink.rdbuf());
-    const int status = run_lab_command({kStudy, "--out", out.string()},
+    const int status = gradem::app::run_lab_command({kStudy, "--out", out.string()},
                                        [&](const fs::path& dir, std::ostream&) { hooked.push_back(dir); });
     std::cout.rdbuf(old_out);
     REQUIRE(status == 0);
@@ -120,14 +121,14 @@ TEST_CASE("lab: curves.csv holds every cube's curve, thinned, with its peak, the
     for (const auto& c : j["cubes"]) {
         const auto& [samples, peak] = curves.at(c["file"].get<std::string>());
         CHECK(samples > 50);
-        CHECK(samples <= kCurvePointsPerCube);
+        CHECK(samples <= gradem::report::kCurvePointsPerCube);
         CHECK(peak == Approx(c["peak_stress_mpa"].get<double>()).epsilon(1e-7));  // the peak sample is kept
     }
     fs::remove_all(out);
 
     hooked.clear();
     auto* old_out2 = std::cout.rdbuf(sink.rdbuf());
-    run_lab_command({kStudy, "--no-write"}, [&](const fs::path& dir, std::ostream&) { hooked.push_back(dir); });
+    gradem::app::run_lab_command({kStudy, "--no-write"}, [&](const fs::path& dir, std::ostream&) { hooked.push_back(dir); });
     std::cout.rdbuf(old_out2);
     CHECK(hooked.empty());
 }

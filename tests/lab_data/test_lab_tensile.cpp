@@ -19,6 +19,7 @@
 #include "reports/lab_report.hpp"
 
 using namespace gradem::lab;
+using namespace gradem::report;
 namespace fs = std::filesystem;
 
 namespace {
