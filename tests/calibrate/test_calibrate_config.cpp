@@ -136,7 +136,7 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
         std::vector<std::string> free;
     };
     const std::vector<Shipped> shipped = {
-        {"joint.toml", gradem::BondModel::flat_joint, 3.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa"}},
+        {"joint.toml", gradem::BondModel::flat_joint, 3.5e-3, 3, {"effective_modulus_gpa", "tensile_strength_mpa"}},
         {"joint_parallel_bond.toml", gradem::BondModel::parallel_bond, 3.5e-3, 3, {"effective_modulus_gpa", "tensile_strength_mpa", "bond_gap_um"}},
         {"study.toml", gradem::BondModel::parallel_bond, 2.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
         {"per_sand.toml", gradem::BondModel::parallel_bond, 2.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
