@@ -28,12 +28,12 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using wire::Kind;
 
-/// Set when rank 0 gives a worker up (or leaves runs in flight): the job must then end with
-/// MPI_Abort, not finalize.
+/// Set when rank 0 gives a worker up (or leaves runs in flight): the job must then end without
+/// finalizing (Session::~Session).
 bool g_rank_lost = false;
 
-/// How long MPI_Abort may take before rank 0 exits on its own (s).
-constexpr int kAbortWatchdogSeconds = 10;
+/// Rank 0's exit status when it ends a job with a lost rank.
+constexpr int kLostRankExitStatus = 5;
 
 struct Message {
     int source = 0;
@@ -116,18 +116,15 @@ Session::Session() {
 
 Session::~Session() {
     if (g_rank_lost) {
-        std::fprintf(stderr, "gradem: a worker rank did not answer; ending the job with MPI_Abort (a lost rank cannot "
-                             "finalize); every finished run is in the ledger\n");
+        std::fprintf(stderr, "gradem: a worker rank did not answer; ending the job without MPI_Finalize (a lost rank "
+                             "cannot finalize); every finished run is in the ledger\n");
         std::fflush(stderr);
-        // Open MPI 4.1's MPI_Abort can itself hang (its abort message to mpirun races; seen once
-        // in CI under load: "ORTE_ERROR_LOG: Data unpack would read past end of buffer in
-        // show_help.c"). A watchdog ends this process if mpirun has not killed it within
-        // kAbortWatchdogSeconds; mpirun then ends the job as for any rank that exits unfinalized.
-        std::thread([] {
-            std::this_thread::sleep_for(std::chrono::seconds(kAbortWatchdogSeconds));
-            std::_Exit(5);
-        }).detach();
-        MPI_Abort(MPI_COMM_WORLD, 5);
+        std::fflush(stdout);
+        // Not MPI_Abort: Open MPI 4.1's abort sends mpirun a help message whose unpacking races
+        // ("ORTE_ERROR_LOG: Data unpack would read past end of buffer in show_help.c", seen in CI
+        // on 2 loaded cores), after which mpirun never ends the job. A rank that exits non-zero
+        // without finalizing makes mpirun end the job and kill the other ranks, hung ones too.
+        std::_Exit(kLostRankExitStatus);
     }
     MPI_Finalize();
 }
@@ -420,7 +417,7 @@ private:
     }
 
     /// Runs still in flight when rank 0 gives up: their workers may be blocked sending a
-    /// result nobody will receive, so the job cannot finalize; it ends with MPI_Abort.
+    /// result nobody will receive, so the job cannot finalize; rank 0 exits without it.
     void abandon_flights() const {
         for (const auto& f : flights_)
             if (f) g_rank_lost = true;
@@ -502,7 +499,7 @@ int run_job(const std::function<JobModel(int rank)>& make_model, const std::func
                     error = std::current_exception();
                 }
             }
-            if (error && g_rank_lost) {  // the Session ends with MPI_Abort: say why first
+            if (error && g_rank_lost) {  // the Session exits without finalizing: say why first
                 try {
                     std::rethrow_exception(error);
                 } catch (const std::exception& e) {

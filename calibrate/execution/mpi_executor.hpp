@@ -13,7 +13,8 @@
 //     sent back like any result: recorded, and the calibration goes on;
 //   - a worker that sends no result within timeout_s + grace is recorded as timed out and no
 //     longer used; if none is left the calibration stops with a message; a job with a lost
-//     rank ends with MPI_Abort (it cannot finalize) once rank 0 has written its outputs;
+//     rank ends with rank 0 exiting (status 5) without MPI_Finalize once it has written its
+//     outputs (a lost rank cannot finalize), and mpirun ending the job;
 //   - a worker process that exits or is killed: mpirun ends the whole job (its default), so
 //     nothing hangs; rerun the same command and it resumes from the ledger. Under
 //     `mpirun --enable-recovery` the job lives on and the dead worker is given up after
@@ -41,7 +42,8 @@ public:
 bool launched();
 
 /// The job's MPI session: MPI_Init_thread (funneled) on construction; MPI_Finalize on
-/// destruction, or MPI_Abort when a rank was lost (finalizing would wait for it forever).
+/// destruction, or an exit without it when a rank was lost (finalizing would wait for it
+/// forever; MPI_Abort can leave Open MPI 4.1's mpirun hanging: mpi_executor.cpp).
 class Session {
 public:
     Session();
