@@ -196,26 +196,26 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     return cost;
 }
 
-PlanTotals plan_totals(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, int parallel) {
-    PlanTotals t;
-    for (const RunCostPlan& r : runs) {
-        t.run_wall_s += r.seconds();
-        t.particle_steps += r.particles * (r.compression_runs * r.compression_steps + r.tension_runs * r.tension_steps);
+void add_totals(PlanCost& cost) {
+    const int parallel = std::max(1, std::min(cost.workers, cost.cores));
+    double wall = 0.0, steps = 0.0, genesis = 0.0;
+    for (const RunCostPlan& r : cost.runs) {
+        wall += r.seconds();
+        steps += r.particles * (r.compression_runs * r.compression_steps + r.tension_runs * r.tension_steps);
     }
     std::vector<std::uint64_t> made;
-    for (const SpecimenPlan& sp : specimens) {
+    for (const SpecimenPlan& sp : cost.specimens) {
         if (sp.cached || std::find(made.begin(), made.end(), sp.packing_key) != made.end()) continue;
         made.push_back(sp.packing_key);
-        for (const RunCostPlan& r : runs)
+        for (const RunCostPlan& r : cost.runs)
             if (r.sand == sp.sand && r.set == sp.set) {
-                t.genesis_wall_max_s += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
+                genesis += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
                 break;
             }
     }
-    const int p = std::max(1, parallel);
-    t.run_wall_s /= p;
-    t.genesis_wall_max_s /= p;
-    return t;
+    cost.run_particle_steps = steps;
+    cost.run_wall_s = wall / parallel;
+    cost.genesis_wall_max_s = genesis / parallel;
 }
 
 double RunCostPlan::seconds() const {
@@ -252,10 +252,7 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     for (const PlannedSpecimens& set : specimen_sets(problem))
         for (std::size_t s = 0; s < problem.sands.size(); ++s)
             plan.runs.push_back(plan_sand(problem, set, s, e, start, probe_seconds, plan.specimens));
-    const PlanTotals totals = plan_totals(plan.specimens, plan.runs, std::min(plan.workers, plan.cores));
-    plan.run_particle_steps = totals.particle_steps;
-    plan.run_wall_s = totals.run_wall_s;
-    plan.genesis_wall_max_s = totals.genesis_wall_max_s;
+    add_totals(plan);
     std::ostringstream a;
     a << "the runs follow the solver's path on the analytic stand-in (" << e.fitted << " of the budget's " << plan.budget
       << "); a DEM path may stop earlier or use the whole budget";
@@ -268,34 +265,39 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     return plan;
 }
 
-std::string cost_text(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, const PlanTotals& totals,
-                      int workers, int cores) {
+std::string cost_text(const PlanCost& cost) {
     std::ostringstream o;
-    for (const SpecimenPlan& s : specimens)
+    for (const SpecimenPlan& s : cost.specimens)
         o << "specimen " << s.sand << " (" << s.set << "), seed " << s.seed << ": " << s.particles << " grains"
           << (s.cached ? " (cached)" : " (genesis first, at most " + std::to_string(s.genesis_max_steps) + " steps)") << "\n";
-    for (const RunCostPlan& r : runs) {
+    for (const RunCostPlan& r : cost.runs) {
         o << "run " << r.sand << " (" << r.set << "): " << r.compression_runs << " compression x "
           << static_cast<long long>(std::llround(r.compression_steps)) << " steps";
         if (r.tension_runs) o << ", " << r.tension_runs << " tension x " << static_cast<long long>(std::llround(r.tension_steps)) << " steps";
         o << "; time step " << r.time_step_s << " s, " << r.seconds_per_particle_step * 1e9 << " ns per particle-step"
           << (r.timed_on_packing ? "" : " (timed on a quick packing: genesis has not run)") << "\n";
     }
-    o << "particle-steps: " << totals.particle_steps << "\n";
-    o << "estimated wall time: " << common::clock_text(totals.run_wall_s) << " on " << std::min(workers, cores) << " of " << workers
-      << " workers (" << cores << " cores)";
-    if (totals.genesis_wall_max_s > 0.0) o << ", plus genesis at most " << common::clock_text(totals.genesis_wall_max_s);
+    o << "particle-steps: " << cost.run_particle_steps << "\n";
+    o << "estimated wall time: " << common::clock_text(cost.run_wall_s) << " on " << std::min(cost.workers, cost.cores) << " of "
+      << cost.workers << " workers (" << cost.cores << " cores)";
+    if (cost.genesis_wall_max_s > 0.0) o << ", plus genesis at most " << common::clock_text(cost.genesis_wall_max_s);
     o << "\n";
+    for (const std::string& a : cost.assumptions) o << "assumed: " << a << "\n";
     return o.str();
 }
 
-void add_cost_json(nlohmann::ordered_json& j, const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs) {
+void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost) {
+    j["workers"] = cost.workers;
+    j["cores"] = cost.cores;
+    j["particle_steps"] = cost.run_particle_steps;
+    j["wall_s"] = cost.run_wall_s;
+    j["genesis_wall_max_s"] = cost.genesis_wall_max_s;
     j["specimens"] = nlohmann::ordered_json::array();
     j["runs"] = nlohmann::ordered_json::array();
-    for (const SpecimenPlan& s : specimens)
+    for (const SpecimenPlan& s : cost.specimens)
         j["specimens"].push_back({{"sand", s.sand}, {"set", s.set}, {"seed", s.seed}, {"particles", s.particles},
                                   {"cached", s.cached}, {"genesis_max_steps", s.genesis_max_steps}});
-    for (const RunCostPlan& r : runs)
+    for (const RunCostPlan& r : cost.runs)
         j["runs"].push_back({{"sand", r.sand},
                              {"set", r.set},
                              {"particles", r.particles},
@@ -307,6 +309,7 @@ void add_cost_json(nlohmann::ordered_json& j, const std::vector<SpecimenPlan>& s
                              {"tension_runs", r.tension_runs},
                              {"tension_steps", r.tension_steps},
                              {"timed_on_packing", r.timed_on_packing}});
+    j["assumptions"] = cost.assumptions;
 }
 
 std::string plan_text(const CalibrationPlan& plan) {
@@ -315,9 +318,7 @@ std::string plan_text(const CalibrationPlan& plan) {
       << " evaluations" << (plan.tension ? ", each compression run with its tension test" : "") << ")";
     if (plan.scale_up_runs) o << ", then " << plan.scale_up_runs << " scale-up runs";
     if (plan.validation_runs) o << ", then " << plan.validation_runs << " validation runs";
-    o << "\n";
-    o << cost_text(plan.specimens, plan.runs, {plan.run_particle_steps, plan.run_wall_s, plan.genesis_wall_max_s}, plan.workers, plan.cores);
-    for (const std::string& a : plan.assumptions) o << "assumed: " << a << "\n";
+    o << "\n" << cost_text(plan);
     return o.str();
 }
 
@@ -327,14 +328,8 @@ std::string plan_json(const CalibrationPlan& plan) {
                              {"expected_evaluations", plan.expected_evaluations},
                              {"scale_up_runs", plan.scale_up_runs},
                              {"validation_runs", plan.validation_runs},
-                             {"tension", plan.tension},
-                             {"workers", plan.workers},
-                             {"cores", plan.cores},
-                             {"particle_steps", plan.run_particle_steps},
-                             {"wall_s", plan.run_wall_s},
-                             {"genesis_wall_max_s", plan.genesis_wall_max_s}};
-    add_cost_json(j, plan.specimens, plan.runs);
-    j["assumptions"] = plan.assumptions;
+                             {"tension", plan.tension}};
+    add_cost_json(j, plan);
     return j.dump(2);
 }
 

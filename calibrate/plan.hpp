@@ -59,13 +59,9 @@ struct RunCostPlan {
     [[nodiscard]] double seconds() const;  ///< of all its runs, one thread
 };
 
-struct CalibrationPlan {
-    int budget = 0;                      ///< solver.max_runs
-    int expected_runs = 0;               ///< fitted runs on the stand-in's path (≤ budget)
-    int expected_evaluations = 0;
-    int scale_up_runs = 0;               ///< apart from the budget
-    int validation_runs = 0;             ///< apart from the budget
-    bool tension = false;                ///< each compression run has its tension companion
+/// What every plan prices (a calibration's, calibrate/study/study_plan.hpp's): its packings, its
+/// runs and their cost on min(workers, cores) concurrent runs, and what it assumed.
+struct PlanCost {
     int workers = 1, cores = 1;
     std::vector<SpecimenPlan> specimens;
     std::vector<RunCostPlan> runs;
@@ -73,6 +69,15 @@ struct CalibrationPlan {
     double run_wall_s = 0.0;             ///< estimated wall time of the runs [s]
     double genesis_wall_max_s = 0.0;     ///< upper bound of the genesis still to run [s]
     std::vector<std::string> assumptions;
+};
+
+struct CalibrationPlan : PlanCost {
+    int budget = 0;                      ///< solver.max_runs
+    int expected_runs = 0;               ///< fitted runs on the stand-in's path (≤ budget)
+    int expected_evaluations = 0;
+    int scale_up_runs = 0;               ///< apart from the budget
+    int validation_runs = 0;             ///< apart from the budget
+    bool tension = false;                ///< each compression run has its tension companion
 };
 
 /// Distinct fitted runs and validation runs of the problem's solver path on the analytic
@@ -106,18 +111,16 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
                       const exp::MaterialParams& material, RunCounts counts, double probe_seconds,
                       std::vector<SpecimenPlan>& specimens);
 
-/// Step 5: Σ particle-steps and the wall time of `runs` over `parallel` concurrent runs, and the
-/// upper bound of the genesis still to run for `specimens` (each distinct packing once).
-struct PlanTotals {
-    double particle_steps = 0.0, run_wall_s = 0.0, genesis_wall_max_s = 0.0;
-};
-PlanTotals plan_totals(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, int parallel);
+/// Step 5: Σ particle-steps and the wall time of the cost's runs over min(workers, cores)
+/// concurrent runs, and the upper bound of the genesis still to run for its specimens (each
+/// distinct packing once).
+void add_totals(PlanCost& cost);
 
-/// The specimen, run and wall-time lines of a plan, for people; the same as "specimens" and
-/// "runs" arrays of `j`, for programs.
-std::string cost_text(const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs, const PlanTotals& totals,
-                      int workers, int cores);
-void add_cost_json(nlohmann::ordered_json& j, const std::vector<SpecimenPlan>& specimens, const std::vector<RunCostPlan>& runs);
+/// The specimen, run, wall-time and assumption lines of a plan, for people; the same as keys of
+/// `j` (workers, cores, particle_steps, wall_s, genesis_wall_max_s, specimens, runs,
+/// assumptions), for programs.
+std::string cost_text(const PlanCost& cost);
+void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost);
 
 /// For people (stdout of --plan) and for programs (--json).
 std::string plan_text(const CalibrationPlan& plan);

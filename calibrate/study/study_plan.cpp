@@ -51,10 +51,7 @@ StudyPlan plan_study(const StudyConfig& config, double probe_seconds) {
     }
     if (!cases.empty() && cases.front().problem.model == "analytic")
         plan.assumptions.push_back("model = \"analytic\": the stand-in runs in milliseconds; nothing to estimate");
-    const PlanTotals totals = plan_totals(plan.specimens, plan.runs, std::min(plan.workers, plan.cores));
-    plan.run_particle_steps = totals.particle_steps;
-    plan.run_wall_s = totals.run_wall_s;
-    plan.genesis_wall_max_s = totals.genesis_wall_max_s;
+    add_totals(plan);
     plan.assumptions.push_back("the cases are those the kind asks for when the stand-in answers the earlier ones; "
                                "runs already in the study's ledger are served from it and cost nothing");
     std::ostringstream end;
@@ -69,9 +66,7 @@ std::string study_plan_text(const StudyPlan& plan) {
     o << "study " << plan.kind << ": " << plan.cases << (plan.cases == 1 ? " case, " : " cases, ") << plan.compression_runs
       << " compression runs";
     if (plan.tension_runs) o << " and " << plan.tension_runs << " tension runs";
-    o << "\n";
-    o << cost_text(plan.specimens, plan.runs, {plan.run_particle_steps, plan.run_wall_s, plan.genesis_wall_max_s}, plan.workers, plan.cores);
-    for (const std::string& a : plan.assumptions) o << "assumed: " << a << "\n";
+    o << "\n" << cost_text(plan);
     return o.str();
 }
 
@@ -79,14 +74,8 @@ std::string study_plan_json(const StudyPlan& plan) {
     nlohmann::ordered_json j{{"kind", plan.kind},
                              {"cases", plan.cases},
                              {"compression_runs", plan.compression_runs},
-                             {"tension_runs", plan.tension_runs},
-                             {"workers", plan.workers},
-                             {"cores", plan.cores},
-                             {"particle_steps", plan.run_particle_steps},
-                             {"wall_s", plan.run_wall_s},
-                             {"genesis_wall_max_s", plan.genesis_wall_max_s}};
-    add_cost_json(j, plan.specimens, plan.runs);
-    j["assumptions"] = plan.assumptions;
+                             {"tension_runs", plan.tension_runs}};
+    add_cost_json(j, plan);
     return j.dump(2);
 }
 

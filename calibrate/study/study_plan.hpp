@@ -18,17 +18,11 @@
 
 namespace gradem::cal {
 
-struct StudyPlan {
+/// Its specimens' set is the case's label; one RunCostPlan per case (of one or more points) and sand.
+struct StudyPlan : PlanCost {
     std::string kind;
     int cases = 0;                       ///< the cases the kind asked for (a point on a specimen set)
     int compression_runs = 0, tension_runs = 0;
-    int workers = 1, cores = 1;
-    std::vector<SpecimenPlan> specimens;  ///< set: the case's label
-    std::vector<RunCostPlan> runs;        ///< one per case (of one or more points) and sand
-    double run_particle_steps = 0.0;
-    double run_wall_s = 0.0;              ///< [s]
-    double genesis_wall_max_s = 0.0;      ///< [s] each distinct packing still to make, once
-    std::vector<std::string> assumptions;
 };
 
 /// The plan of the study (steps 1-3). Throws what the study would throw for bad input
