@@ -118,11 +118,20 @@ double loading_steps(double end_strain, double ramp_strain, double rate, double 
     return (end_strain + 0.5 * std::min(ramp_strain, end_strain)) / (rate * dt);
 }
 
-/// The gauge strain at peak a run of this sand is expected to reach (see plan.hpp, step 4).
-double expected_peak_strain(const CalibrationProblem& problem, const SandTargets& lab) {
-    const double lab_d = lab.modulus.mean * lab.strain.mean / lab.peak.mean;
-    const double d = problem.bond_model() == BondModel::parallel_bond ? kParallelBondShapeIndex : lab_d;
-    return d * lab.peak.mean / lab.modulus.mean;
+/// The law's PlatenTestCost row, if it has one.
+std::optional<PlatenTestCost> platen_test_cost(BondModel model) {
+    return visit_bond_law(model, [](auto kernel) -> std::optional<PlatenTestCost> {
+        using Law = decltype(kernel);
+        if constexpr (requires { Law::kPlatenTestCost; }) return Law::kPlatenTestCost;
+        else return std::nullopt;
+    });
+}
+
+/// The platen strain at which a compression run of this sand is expected to end (plan.hpp, step 4).
+double compression_end_strain(BondModel model, const SandTargets& lab) {
+    const double elastic = lab.peak.mean / lab.modulus.mean;
+    if (const auto cost = platen_test_cost(model)) return cost->compression_end_over_elastic * elastic;
+    return kEndOverPeakStrain * lab.strain.mean;
 }
 
 /// The runs of each sand on a set, from the stand-in's path: the fitted runs spread over the
@@ -183,8 +192,11 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     cost.settle_steps = probe.settle_steps;
     const exp::PlatenTestSpec& l = config.test.loading;
     const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, material) : l.strain_rate;
-    const double end = kEndOverPeakStrain * expected_peak_strain(problem, problem.targets[s]);
+    const double end = compression_end_strain(problem.bond_model(), problem.targets[s]);
     cost.compression_steps = probe.settle_steps + loading_steps(end, l.ramp_strain, rate, probe.time_step);
+    const PlatenTestCost factors = platen_test_cost(problem.bond_model()).value_or(PlatenTestCost{});
+    cost.compression_cost_factor = factors.compression_cost_factor;
+    cost.tension_cost_factor = factors.tension_cost_factor;
     cost.compression_runs = counts.compression;
     if (counts.tension > 0) {
         const exp::TensionConfig tension = exp::load_tension_config(config);
@@ -219,7 +231,20 @@ void add_totals(PlanCost& cost) {
 }
 
 double RunCostPlan::seconds() const {
-    return particles * seconds_per_particle_step * (compression_runs * compression_steps + tension_runs * tension_steps);
+    return particles * seconds_per_particle_step *
+           (compression_cost_factor * compression_runs * compression_steps + tension_cost_factor * tension_runs * tension_steps);
+}
+
+std::string test_cost_assumption(BondModel model) {
+    std::ostringstream o;
+    if (const auto cost = platen_test_cost(model))
+        o << "a compression run ends at a platen strain of " << cost->compression_end_over_elastic
+          << " x sigma_lab/E_lab and costs " << cost->compression_cost_factor << " x per particle-step what the engine timing measured, a tension run "
+          << cost->tension_cost_factor << " x (the " << to_string(model) << "'s PlatenTestCost)";
+    else
+        o << "a compression run ends at " << kEndOverPeakStrain << " x the lab's strain at peak and costs per particle-step what the engine timing measured (the "
+          << to_string(model) << " has no PlatenTestCost)";
+    return o.str();
 }
 
 ExpectedRuns expected_runs(const CalibrationProblem& problem) {
@@ -257,11 +282,7 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     a << "the runs follow the solver's path on the analytic stand-in (" << e.fitted << " of the budget's " << plan.budget
       << "); a DEM path may stop earlier or use the whole budget";
     plan.assumptions.push_back(a.str());
-    std::ostringstream end;
-    end << "a compression run ends at " << kEndOverPeakStrain << " x the strain at peak D sigma_lab/E_lab, D = "
-        << (problem.bond_model() == BondModel::parallel_bond ? "1.2 (the parallel bond)" : "the lab's")
-        << "; every run costs per particle-step what the start point costs in the engine timing";
-    plan.assumptions.push_back(end.str());
+    plan.assumptions.push_back(test_cost_assumption(problem.bond_model()) + "; every run costs what the start point costs");
     return plan;
 }
 
@@ -303,6 +324,8 @@ void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost) {
                              {"particles", r.particles},
                              {"time_step_s", r.time_step_s},
                              {"seconds_per_particle_step", r.seconds_per_particle_step},
+                             {"compression_cost_factor", r.compression_cost_factor},
+                             {"tension_cost_factor", r.tension_cost_factor},
                              {"settle_steps", r.settle_steps},
                              {"compression_runs", r.compression_runs},
                              {"compression_steps", r.compression_steps},

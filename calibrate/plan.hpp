@@ -10,10 +10,10 @@
 //      material and cycled for a few seconds on one thread (what a worker runs): seconds per
 //      particle-step, the time step and the settling steps;
 //   4. steps per run: settling + the platen travel to the end strain at the test's rate over
-//      the time step. Compression ends at kEndOverPeakStrain × the expected strain at peak
-//      D σ_lab/E_lab, with D = kParallelBondShapeIndex for the parallel bond (near-linear to its
-//      peak) and the lab's own D = E ε_peak/σ_peak for the laws made to reach it; direct tension
-//      at kTensionEndOverExpected × its expected peak strain;
+//      the time step. Compression ends at the law's PlatenTestCost::compression_end_over_elastic
+//      × σ_lab/E_lab (core/law_parameters.hpp), or, for a law without that row, at
+//      kEndOverPeakStrain × the lab's strain at peak; direct tension at
+//      kTensionEndOverExpected × its expected peak strain;
 //   5. wall time: Σ particle-steps × seconds per particle-step over min(workers, cores).
 #include <cstdint>
 #include <string>
@@ -26,11 +26,10 @@
 namespace gradem::cal {
 
 /// End of a compression run (stress down to stop_fraction × peak) over the expected gauge
-/// strain at peak [-]: the platen strain exceeds the gauge's before the peak, and the test runs
-/// on past it. Measured on parallel-bond calibrations of 2.5 mm cubes (docs/calibration.md).
+/// strain at peak [-], for a law without a PlatenTestCost row: the platen strain exceeds the
+/// gauge's before the peak, and the test runs on past it. Measured on parallel-bond
+/// calibrations of 2.5 mm cubes (docs/calibration.md).
 inline constexpr double kEndOverPeakStrain = 1.45;
-/// D = E ε_peak / σ_peak of parallel-bond cubes (1.1-1.3; the lab's mortar: 1.7-2.1) [-].
-inline constexpr double kParallelBondShapeIndex = 1.2;
 /// End of a direct-tension run over its expected peak strain (experiments/config/tension_config.hpp:
 /// the measured peak is 0.62 σ̄c/Ē where the rate assumes 0.5 σ̄c/Ē, and the test runs on past it).
 inline constexpr double kTensionEndOverExpected = 1.6;
@@ -50,7 +49,9 @@ struct RunCostPlan {
     std::string sand, set;
     double particles = 0.0;              ///< mean over the set's seeds
     double time_step_s = 0.0;            ///< [s]
-    double seconds_per_particle_step = 0.0;  ///< one thread
+    double seconds_per_particle_step = 0.0;  ///< one thread, the bonded specimen at rest (the probe)
+    double compression_cost_factor = 1.0;    ///< a compression test's cost per particle-step over the probe's
+    double tension_cost_factor = 1.0;        ///< a direct-tension test's
     double settle_steps = 0.0;
     double compression_steps = 0.0;      ///< settling + loading
     double tension_steps = 0.0;          ///< 0 when no tension test runs
@@ -115,6 +116,10 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
 /// concurrent runs, and the upper bound of the genesis still to run for its specimens (each
 /// distinct packing once).
 void add_totals(PlanCost& cost);
+
+/// What every plan assumes of its runs' length and cost (the law's PlatenTestCost), for its
+/// assumption lines.
+std::string test_cost_assumption(BondModel model);
 
 /// The specimen, run, wall-time and assumption lines of a plan, for people; the same as keys of
 /// `j` (workers, cores, particle_steps, wall_s, genesis_wall_max_s, specimens, runs,

@@ -26,6 +26,8 @@
 //     analytic_ductility(own, h) -> double     the analytic stand-in's extra shape index for a
 //                                              sand of ductility coefficient h
 //                                              (calibrate/analytic_model.cpp)
+//     kPlatenTestCost                          what its platen tests cost, as --plan prices
+//                                              them (core/law_parameters.hpp, calibrate/plan.cpp)
 //     compute_all(pass, dt) -> BondPassEnergy  the law's own pass over every bond, instead of
 //                                              the World's generic loop (core/bond_pass.hpp)
 #include <algorithm>

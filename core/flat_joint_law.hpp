@@ -319,6 +319,15 @@ struct FlatJointLaw {
         return out.str();
     }
 
+    /// Broken joints slide on at μ_r after the peak, so a compression test runs on to ≈ 3.2 σ/E
+    /// (the peak at D ≈ 1.4, the end ≈ 2.5-3 × later); its broken and slit joints and the contacts
+    /// the cracks make cost ≈ 1.85× per particle-step what the bonded specimen costs, 1.17× in
+    /// tension. Measured on the main job's runs (calibrate/configs/joint.toml, μ_r 0.4, 2 workers
+    /// on 2 cores; docs/calibration.md "The cost before the run").
+    static constexpr PlatenTestCost kPlatenTestCost{.compression_end_over_elastic = 3.2,
+                                                    .compression_cost_factor = 1.85,
+                                                    .tension_cost_factor = 1.17};
+
     /// The analytic stand-in's extra shape index for a sand of ductility coefficient h
     /// (calibrate/analytic_model.cpp): h μ_r / 2, the frictional residual of broken elements.
     static double analytic_ductility(const FlatJointParams& f, double h) { return 0.5 * h * f.residual_friction; }

@@ -42,6 +42,22 @@ enum class Calibration : std::uint8_t {
     fixed_only,  ///< integer parameter: may be fixed in [parameters.<key>], never free
 };
 
+/// What the platen tests of a specimen bonded by a law cost beyond the bonded specimen at rest,
+/// as `gradem calibrate --plan` prices them (calibrate/plan.cpp; docs/calibration.md "The cost
+/// before the run"). A law states it as `static constexpr PlatenTestCost kPlatenTestCost`, measured
+/// on calibrations of the shipped configs; a law without it is priced at the lab's shape index and
+/// at the probe's cost per particle-step.
+struct PlatenTestCost {
+    /// Platen strain at which a compression test ends (stress down to its stop fraction of the
+    /// peak) over σ_peak/E of the specimen [-]: 1.45 D for a curve of shape index D that drops
+    /// soon after its peak, more for one with a long post-peak tail.
+    double compression_end_over_elastic = 0.0;
+    /// Seconds per particle-step of a compression test over the bonded specimen's at rest [-]
+    /// (broken bonds, new contacts, workers sharing the memory system).
+    double compression_cost_factor = 1.0;
+    double tension_cost_factor = 1.0;  ///< the same for a direct-tension test [-]
+};
+
 /// Typed access to one field of a law's parameter struct P, as a double (every row) and as an
 /// exact integer (integer and yes/no fields).
 template <class P>

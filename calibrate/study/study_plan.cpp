@@ -54,10 +54,11 @@ StudyPlan plan_study(const StudyConfig& config, double probe_seconds) {
     add_totals(plan);
     plan.assumptions.push_back("the cases are those the kind asks for when the stand-in answers the earlier ones; "
                                "runs already in the study's ledger are served from it and cost nothing");
-    std::ostringstream end;
-    end << "a compression run ends at " << kEndOverPeakStrain << " x the expected strain at peak (calibrate/plan.hpp); "
-        << "every run of a case costs per particle-step what its first point costs in the engine timing";
-    plan.assumptions.push_back(end.str());
+    std::vector<BondModel> models;
+    for (const PlannedCase& c : cases)
+        if (std::find(models.begin(), models.end(), c.problem.bond_model()) == models.end()) models.push_back(c.problem.bond_model());
+    for (BondModel m : models) plan.assumptions.push_back(test_cost_assumption(m));
+    plan.assumptions.push_back("every run of a case costs what its first point costs");
     return plan;
 }
 

@@ -23,12 +23,12 @@ const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
 /// A ~200-grain cube of the study's dataset (grains 0.4-1.0 mm in a 3 mm cube), loaded fast
 /// (20 /s: ~10 000 steps; quasi-static or not does not matter to what is planned): genesis and a
 /// cube test take a few seconds each.
-fs::path write_tiny_base(const fs::path& dir) {
+fs::path write_tiny_base(const fs::path& dir, const std::string& material = "") {
     const std::string study = (fs::path(GRADEM_SOURCE_DIR) / "lab_data" / "datasets" / "study").string();
     test::write_text(dir / "base.toml", "[specimen]\ndataset = \"" + study +
                                             "\"\nsand = \"Van Buren\"\n[size_rule]\nmin_diameter_mm = 0.4\n"
                                             "max_diameter_mm = 1.0\n[genesis]\nedge_mm = 3.0\ntarget_solid_fraction = 0.55\n"
-                                            "[test]\nstrain_rate_per_s = 20.0\n[output]\ncache_dir = \"cache\"\n");
+                                            "[test]\nstrain_rate_per_s = 20.0\n[output]\ncache_dir = \"cache\"\n" + material);
     return dir / "base.toml";
 }
 
@@ -115,6 +115,31 @@ TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the
     const std::string text = cal::plan_text(plan);
     CHECK(text.find("estimated wall time") != std::string::npos);
     CHECK(text.find("Van Buren (validation), seed 11") != std::string::npos);
+}
+
+TEST_CASE("plan: a flat joint's runs are priced with its law's PlatenTestCost", "[calibrate][plan]") {
+    // The law's row (core/flat_joint_law.hpp) is measured on the main job's runs; here: that the
+    // plan of a flat-joint problem takes it, and prices a run as its factor times the probe.
+    TempDir dir("cal-plan-fj");
+    const exp::CubeConfig cube = exp::load_cube_config(write_tiny_base(dir.path, "[material]\nmodel = \"flat_joint\"\n"));
+    REQUIRE(cube.material.bond.model == BondModel::flat_joint);
+    auto model = cal::make_dem_model(cube, {"Van Buren"});
+    model->prepare({1}, 1, {});
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, {"Van Buren"}, cube.material, {1}).dump(1));
+    test::write_text(dir.path / "problem.toml", "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1]\n"
+                                                "[targets]\nlab_results = \"lab_results.json\"\n[solver]\nmax_runs = 4\n"
+                                                "[output]\ndir = \"out\"\n");
+    const cal::CalibrationPlan plan = cal::plan_calibration(cal::load_calibration_problem(dir.path / "problem.toml"), 0.5);
+    REQUIRE(plan.runs.size() == 1);
+    const cal::RunCostPlan& fit = plan.runs.front();
+    constexpr PlatenTestCost law = FlatJointLaw::kPlatenTestCost;
+    CHECK(fit.compression_cost_factor == law.compression_cost_factor);
+    CHECK(fit.tension_cost_factor == law.tension_cost_factor);
+    REQUIRE(fit.compression_runs > 0);
+    CHECK(fit.seconds() == Approx(fit.particles * fit.seconds_per_particle_step * law.compression_cost_factor *
+                                  fit.compression_runs * fit.compression_steps).epsilon(1e-12));
+    CHECK(plan.run_wall_s == Approx(fit.seconds() / std::min(plan.workers, plan.cores)).epsilon(1e-12));
+    CHECK(cal::plan_text(plan).find("flat_joint's PlatenTestCost") != std::string::npos);
 }
 
 TEST_CASE("study plan: the cases the kind asks for, priced on their own specimens, and nothing is written",
