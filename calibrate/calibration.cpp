@@ -10,6 +10,25 @@
 namespace gradem::cal {
 namespace {
 
+/// The solver's path; with a tension target that is reported only, the path runs compression
+/// alone (σt cannot move it) with the result's tension runs held back from the budget, and the
+/// tension tests run once, at the best point (its compression runs come from the ledger).
+SolveResult solve_then_tension(const CalibrationProblem& problem, SolveContext& ctx, Evaluator& evaluator,
+                               const std::vector<double>& start) {
+    if (!problem.tension_at_result_only()) return solve(ctx, start);
+    const int tension_runs = static_cast<int>(ctx.sands.size() * problem.seeds.size());
+    const int reserved = evaluator.reserve();
+    evaluator.set_tension_companion(false);
+    evaluator.set_reserve(reserved + tension_runs);
+    SolveResult solution = solve(ctx, start);
+    evaluator.set_reserve(reserved);
+    evaluator.set_tension_companion(true);
+    if (solution.best.empty()) return solution;
+    if (ctx.log) ctx.log("tension tests at the result");
+    solution.best_eval = evaluator.evaluate(solution.best, ctx.sands, "tension at the result");
+    return solution;
+}
+
 CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterSpace& space, Evaluator& evaluator,
                              std::string label, std::vector<std::size_t> fitted,
                              const std::function<void(const std::string&)>& log) {
@@ -18,7 +37,7 @@ CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterS
     stage.fitted = fitted;
     SolveContext ctx{problem, space, evaluator, fitted, log};
     if (log) log(stage.label + ": solving with " + to_string(problem.solver.method));
-    stage.solution = solve(ctx, space.start());
+    stage.solution = solve_then_tension(problem, ctx, evaluator, space.start());
     if (stage.solution.best.empty()) {
         stage.uncertainty.note = "not computed: no evaluation";
         return stage;
@@ -65,7 +84,7 @@ const Evaluation* CalibrationStage::evaluation_of(std::size_t sand) const {
 namespace {
 
 std::unique_ptr<CubeModel> make_specimen_model(const CalibrationProblem& problem, bool tension) {
-    if (problem.model == "analytic") return make_analytic_model(problem.sands.size(), 0.003, 0.0);
+    if (problem.model == RunModel::analytic) return make_analytic_model(problem.sands.size(), 0.003, 0.0);
     return make_dem_model(problem.base, problem.sands, tension || problem.tension.fitted());
 }
 

@@ -46,6 +46,10 @@ Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& sp
 }
 
 
+void Evaluator::set_tension_companion(bool on) {
+    tests_ = on ? tests_of(problem_, primary_) : std::vector<CubeTest>{primary_};
+}
+
 double Evaluator::seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }

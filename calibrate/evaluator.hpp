@@ -91,8 +91,12 @@ public:
     [[nodiscard]] int runs_needed(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands) const;
     [[nodiscard]] int runs_used() const { return static_cast<int>(used_.size()); }
     [[nodiscard]] int runs_remaining() const { return problem_.solver.max_runs - reserve_ - runs_used(); }
+    /// Whether compression runs have their tension companion (a problem that fits tension:
+    /// on by default; off while the solver runs when the tension target is reported only).
+    void set_tension_companion(bool on);
     /// Runs kept back from the solvers (e.g. for the study's prediction); 0 releases them.
     void set_reserve(int runs) { reserve_ = runs; }
+    [[nodiscard]] int reserve() const { return reserve_; }
     [[nodiscard]] int runs_executed() const { return executed_; }
     [[nodiscard]] int runs_from_ledger() const { return served_; }
     [[nodiscard]] int runs_failed() const { return failed_; }

@@ -57,7 +57,7 @@ Scales best_scales(const Evaluation& e, const CalibrationProblem& problem, bool 
         ab += -wP;
         ra += -wE * dE + wP * dP;
         rb += -wS * dS - wP * dP;
-        if (problem.tension.fitted()) {  // row wT (b + dT): σt scales with the strengths alone
+        if (problem.tension.fitted() && problem.weights.tension > 0.0) {  // row wT (b + dT): σt scales with the strengths alone
             const double dT = std::log(s.value(Quantity::tension) / t.tension.mean), wT = std::pow(problem.weights.tension, 2);
             bb += wT;
             rb += -wT * dT;

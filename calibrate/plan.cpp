@@ -149,8 +149,10 @@ RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSpecimens&
                       const exp::MaterialParams& start, double probe_seconds, std::vector<SpecimenPlan>& specimens) {
     const int sands = static_cast<int>(problem.sands.size());
     const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
-    const int compression = problem.tension.fitted() ? per_set / 2 : per_set;
-    return plan_runs(problem, set, s, start, {compression, per_set - compression}, probe_seconds, specimens);
+    int tension = 0;  // the companions of every compression run, or the result's alone (problem.hpp)
+    if (problem.tension.fitted())
+        tension = set.name == "fit" && problem.tension_at_result_only() ? static_cast<int>(set.seeds.size()) : per_set / 2;
+    return plan_runs(problem, set, s, start, {per_set - tension, tension}, probe_seconds, specimens);
 }
 
 }  // namespace
@@ -249,7 +251,7 @@ std::string test_cost_assumption(BondModel model) {
 
 ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     CalibrationProblem dry = problem;
-    dry.model = "analytic";
+    dry.model = RunModel::analytic;
     dry.ledger = ":memory:";
     dry.workers = 1;
     const auto model = make_model(dry);
@@ -261,6 +263,7 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     CalibrationPlan plan;
     plan.budget = problem.solver.max_runs;
     plan.tension = problem.tension.fitted();
+    plan.tension_at_result = problem.tension_at_result_only();
     plan.workers = problem.workers;
     plan.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const ExpectedRuns e = expected_runs(problem);
@@ -268,7 +271,7 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
     plan.expected_evaluations = e.evaluations;
     plan.validation_runs = e.validation;
     plan.scale_up_runs = e.scale_up;
-    if (problem.model == "analytic") {
+    if (problem.model == RunModel::analytic) {
         plan.assumptions.push_back("model = \"analytic\": the stand-in runs in milliseconds; nothing to estimate");
         return plan;
     }
@@ -338,7 +341,7 @@ void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost) {
 std::string plan_text(const CalibrationPlan& plan) {
     std::ostringstream o;
     o << "runs: " << plan.expected_runs << " expected of a budget of " << plan.budget << " (" << plan.expected_evaluations
-      << " evaluations" << (plan.tension ? ", each compression run with its tension test" : "") << ")";
+      << " evaluations" << (!plan.tension ? "" : plan.tension_at_result ? ", the tension tests at the result" : ", each compression run with its tension test") << ")";
     if (plan.scale_up_runs) o << ", then " << plan.scale_up_runs << " scale-up runs";
     if (plan.validation_runs) o << ", then " << plan.validation_runs << " validation runs";
     o << "\n" << cost_text(plan);
@@ -351,7 +354,8 @@ std::string plan_json(const CalibrationPlan& plan) {
                              {"expected_evaluations", plan.expected_evaluations},
                              {"scale_up_runs", plan.scale_up_runs},
                              {"validation_runs", plan.validation_runs},
-                             {"tension", plan.tension}};
+                             {"tension", plan.tension},
+                             {"tension_at_result_only", plan.tension_at_result}};
     add_cost_json(j, plan);
     return j.dump(2);
 }

@@ -78,7 +78,8 @@ struct CalibrationPlan : PlanCost {
     int expected_evaluations = 0;
     int scale_up_runs = 0;               ///< apart from the budget
     int validation_runs = 0;             ///< apart from the budget
-    bool tension = false;                ///< each compression run has its tension companion
+    bool tension = false;                ///< the problem has a tension target
+    bool tension_at_result = false;      ///< its tension tests run at the result only (else with every compression run)
 };
 
 /// Distinct fitted runs and validation runs of the problem's solver path on the analytic

@@ -38,6 +38,14 @@ constexpr EnumNameTable<Mode, 3> enum_name_table(Mode) {
     return {{{Mode::joint, "joint"}, {Mode::per_sand, "per_sand"}, {Mode::study, "study"}}};
 }
 
+/// [calibration] model: what answers a run. dem: a cube test in the engine; analytic: a
+/// closed-form stand-in with the DEM model's homogeneity, in milliseconds (calibrate/analytic_model.cpp:
+/// for trying a problem file and for tests).
+enum class RunModel { dem, analytic };
+constexpr EnumNameTable<RunModel, 2> enum_name_table(RunModel) {
+    return {{{RunModel::dem, "dem"}, {RunModel::analytic, "analytic"}}};
+}
+
 /// [solver] method (calibrate/solvers/solver.cpp dispatches on it).
 enum class Method { scaling, bobyqa, sbplx, cobyla, crs2, direct, ceres };
 constexpr EnumNameTable<Method, 7> enum_name_table(Method) {
@@ -132,7 +140,7 @@ struct CalibrationProblem {
     std::filesystem::path file;
     std::filesystem::path base_file;      ///< the base cube config ([calibration] base)
     exp::CubeConfig base;
-    std::string model = "dem";            ///< "dem" or "analytic" (the stand-in, for trials and tests)
+    RunModel model = RunModel::dem;       ///< what answers a run: the DEM, or the analytic stand-in
     Mode mode = Mode::joint;
     std::vector<std::string> sands;
     std::string calibrate_on;             ///< study mode: the sand calibrated on
@@ -153,6 +161,10 @@ struct CalibrationProblem {
 
     /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
     [[nodiscard]] std::vector<Quantity> fitted_quantities() const;
+
+    /// A tension target that is reported but does not move the fit (tension_weight 0): the
+    /// solver's evaluations run compression alone, and the tension tests run once, at the result.
+    [[nodiscard]] bool tension_at_result_only() const { return tension.fitted() && weights.tension == 0.0; }
 
     /// The bond law every run uses ([calibration] bond_model, or the base's [material] model).
     [[nodiscard]] BondModel bond_model() const { return base.material.bond.model; }

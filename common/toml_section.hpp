@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "common/input_error.hpp"
+#include "common/named_enum.hpp"
 
 namespace gradem::common::toml_io {
 
@@ -105,6 +106,17 @@ public:
         if (!n) return record_default(key, v, false);
         if (!n->is_string()) type_error(key, *n, "a string");
         v = n->as_string()->get();
+        record(key, *n, false);
+    }
+
+    /// One name of a named enum (common/named_enum.hpp); the error lists the names it accepts.
+    template <NamedEnum E>
+    void choice(const char* key, E& v) {
+        const toml::node* n = find(key);
+        if (!n) return record_default(key, to_string(v), false);
+        const auto parsed = n->is_string() ? parse_enum<E>(n->as_string()->get()) : std::nullopt;
+        if (!parsed) type_error(key, *n, enum_names_text<E>(NameList::quoted_or));
+        v = *parsed;
         record(key, *n, false);
     }
 

@@ -421,7 +421,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
     json seeds = p.seeds;
     return {{"schema", "gradem-calibration/1"},
             {"config", p.file.string()},
-            {"model", p.model},
+            {"model", to_string(p.model)},
             {"bond_model", bond_model_name(p.bond_model())},
             {"bond_model_parameters", bond_model_parameters(p, r)},
             {"mode", to_string(p.mode)},
@@ -458,7 +458,7 @@ void header_markdown(std::ostringstream& md, const CalibrationProblem& p, const 
     md << "# gradem calibration: " << p.file.filename().string() << "\n\n";
     if (p.representative)
         md << "> **The lab data are REPRESENTATIVE, not measurements.** " << p.lab_note << "\n\n";
-    md << "- mode **" << to_string(p.mode) << "**, solver **" << to_string(p.solver.method) << "**, model " << p.model
+    md << "- mode **" << to_string(p.mode) << "**, solver **" << to_string(p.solver.method) << "**, model " << to_string(p.model)
        << ", bond model **" << bond_model_name(p.bond_model()) << "**";
     std::string sep = " (";
     const json law = bond_model_parameters(p, r);

@@ -97,8 +97,8 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
     if (scaled_up) cp.problem.base.specimen.genesis.edge = cp.problem.scale_up.edge;
     cp.values = ParameterSpace(cp.problem.parameters, cp.problem.base.material).start();
     cp.bond_model = bond_model_name(cp.problem.base.material.bond.model);
-    if (cp.problem.base.representation != "parallel_bonds")  // the paste as particles
-        cp.bond_model += ", " + cp.problem.base.representation;
+    if (cp.problem.base.representation != exp::Representation::parallel_bonds)  // the paste as particles
+        cp.bond_model += std::string(", ") + to_string(cp.problem.base.representation);
     return cp;
 }
 
@@ -167,7 +167,7 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
     if (options.calibration_seeds) problem.seeds = own_seeds;
     if (planned_) {
         planned_->push_back({problem, points, labels.empty() ? "study" : labels.front(), options.test});
-        problem.model = "analytic";
+        problem.model = RunModel::analytic;
     }
     const CaseRuns runs = evaluate_case(problem, points, labels.empty() ? "study" : labels.front(), *ledger_, execution_,
                                         options.test, [this](const std::string& s) { say(s); });

@@ -46,10 +46,10 @@ StudyPlan plan_study(const StudyConfig& config, double probe_seconds) {
     const std::vector<PlannedCase> cases = planned_cases(config);
     for (const PlannedCase& c : cases) {
         plan.cases += static_cast<int>(c.points.size());
-        if (c.problem.model == "analytic") continue;
+        if (c.problem.model == RunModel::analytic) continue;
         plan_case(c, probe_seconds, plan);
     }
-    if (!cases.empty() && cases.front().problem.model == "analytic")
+    if (!cases.empty() && cases.front().problem.model == RunModel::analytic)
         plan.assumptions.push_back("model = \"analytic\": the stand-in runs in milliseconds; nothing to estimate");
     add_totals(plan);
     plan.assumptions.push_back("the cases are those the kind asks for when the stand-in answers the earlier ones; "

@@ -38,7 +38,7 @@ void read_specimen(Context& ctx, const toml::table& root, CubeConfig& c) {
     s.path("dataset", c.dataset);
     s.text("sand", c.sand);
     s.path("sieve_csv", c.sieve_csv);
-    s.text("representation", c.representation);  // paste_config.hpp
+    s.choice("representation", c.representation);  // paste_config.hpp
     s.finish();
     const int line = ctx.keys["specimen.dataset"].line + ctx.keys["specimen.sieve_csv"].line;
     if (c.dataset.empty() == c.sieve_csv.empty())

@@ -19,11 +19,20 @@
 #include <filesystem>
 #include <string>
 
+#include "common/named_enum.hpp"
 #include "experiments/virtual_tests/cube_test.hpp"
 #include "experiments/specimen/genesis.hpp"
 #include "lab_data/gradation.hpp"
 
 namespace gradem::exp {
+
+/// [specimen] representation: how the cement paste is modelled. parallel_bonds: the sand grains
+/// only, the paste as bonds between them; explicit_paste: the paste as particles of its own,
+/// bonded to each other and to the sand ([mix], [paste]: paste_config.hpp).
+enum class Representation { parallel_bonds, explicit_paste };
+constexpr EnumNameTable<Representation, 2> enum_name_table(Representation) {
+    return {{{Representation::parallel_bonds, "parallel_bonds"}, {Representation::explicit_paste, "explicit_paste"}}};
+}
 
 struct CubeConfig {
     std::filesystem::path file;        ///< the TOML file itself (for messages)
@@ -38,7 +47,7 @@ struct CubeConfig {
         int line = 0;
         std::filesystem::path dir;
     } source_key;
-    std::string representation = "parallel_bonds";  ///< or "explicit_paste" ([mix], [paste]: paste_config.hpp)
+    Representation representation = Representation::parallel_bonds;  ///< [mix], [paste] with explicit_paste (paste_config.hpp)
     SpecimenSpec specimen;
     MaterialParams material;
     CubeTestSpec test;                 ///< test.loading.platen_friction = material.platen_friction

@@ -95,11 +95,7 @@ void read_paste(Context& ctx, const toml::table& root, PasteSpec& p, MaterialPar
 }  // namespace
 
 void read_paste_config(Context& ctx, const toml::table& root, CubeConfig& c) {
-    if (c.representation != "parallel_bonds" && c.representation != "explicit_paste")
-        throw InputError(ctx.file, ctx.keys["specimen.representation"].line,
-                         "key 'specimen.representation' = \"" + c.representation +
-                             "\": expected \"parallel_bonds\" or \"explicit_paste\"");
-    if (c.representation == "parallel_bonds") {
+    if (c.representation == Representation::parallel_bonds) {
         for (const char* table : {"mix", "paste"})
             if (const toml::node* n = root.get(table))
                 throw InputError(ctx.file, line_of(*n), std::string("[") + table +

@@ -334,7 +334,7 @@ TEST_CASE("the shipped explicit-paste calibration configs: paste bond stiffness 
     write_lab(dir.path);
     const cal::CalibrationProblem p = load_shipped(dir.path, "joint_paste.toml", "paste_cube.toml");
     REQUIRE(p.base.specimen.paste);  // the base cube is an explicit-paste specimen
-    CHECK(p.base.representation == "explicit_paste");
+    CHECK(p.base.representation == exp::Representation::explicit_paste);
     const cal::ParameterSpace space(p.parameters, p.base.material);
     const std::vector<std::string> free = free_names(p);
     CHECK(free == std::vector<std::string>{"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio"});  // cv fixed
@@ -342,7 +342,7 @@ TEST_CASE("the shipped explicit-paste calibration configs: paste bond stiffness 
 
     // Its parallel-bond twin: the same sands, edge, seeds, free parameters, targets and solver.
     const cal::CalibrationProblem twin = load_shipped(dir.path, "joint_paste_pb.toml", "calibration_cube.toml");
-    CHECK(twin.base.representation == "parallel_bonds");
+    CHECK(twin.base.representation == exp::Representation::parallel_bonds);
     check_same_specimens(twin, p);
     CHECK(twin.solver.method == p.solver.method);
     CHECK(twin.solver.max_runs == p.solver.max_runs);

@@ -116,6 +116,36 @@ TEST_CASE("an assumed σc/σt: the target is σc,lab / ratio, met when the simul
     CHECK_THAT(report::brief_report(problem, r), Catch::Contains("sigc/sigt"));
 }
 
+TEST_CASE("a tension target reported only (weight 0): the path runs compression alone, the tension tests run once at its result",
+          "[calibrate][tension]") {
+    // Oracle: σt cannot move a fit it has no weight in, so the path and its result are those of the
+    // same problem without a tension target; the result's σt is the stand-in's own at that point.
+    auto model = cal::make_analytic_model(1, 0.001);
+    TempDir without("cal-tension-none"), reported("cal-tension-reported");
+    const cal::CalibrationProblem plain = cal::load_calibration_problem(one_sand_problem(without.path, *model, ""));
+    const cal::CalibrationProblem problem =
+        cal::load_calibration_problem(one_sand_problem(reported.path, *model, "tension = \"lab\"\ntension_weight = 0.0\n"));
+    REQUIRE(problem.tension_at_result_only());
+    const cal::CalibrationResult a = cal::run_calibration(plain, *model);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+
+    const cal::SolveResult& best = r.stages.at(0).solution;
+    CHECK(best.best == a.stages.at(0).solution.best);
+    CHECK(best.best_objective == a.stages.at(0).solution.best_objective);
+    REQUIRE(r.history.size() == a.history.size() + 1);
+    for (std::size_t k = 0; k < a.history.size(); ++k) CHECK(r.history[k].tension_runs.empty());
+    const cal::Evaluation& last = r.history.back();
+    CHECK(last.label == "tension at the result");
+    CHECK(last.values == best.best);
+    REQUIRE(last.tension_runs.size() == problem.seeds.size());
+    CHECK(r.runs_used == a.runs_used + static_cast<int>(problem.seeds.size()));  // the compression runs came from the ledger
+    const cal::ParameterSpace space(problem.parameters, problem.base.material);
+    double st = 0.0;
+    for (std::uint64_t seed : problem.seeds) st += model->run({0, seed, space.material(best.best), cal::CubeTest::tension}, 0.0).peak_pa;
+    CHECK(best.best_eval.sands.at(0).value(cal::Quantity::tension) == Approx(st / static_cast<double>(problem.seeds.size())).epsilon(1e-12));
+    CHECK(r.stages.at(0).noise_floor[static_cast<int>(cal::Quantity::tension)] > 0.0);
+}
+
 TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row pulls β as far as its weight says", "[calibrate][tension]") {
     cal::CalibrationProblem p;
     p.tension.source = cal::TensionSource::lab;

@@ -55,7 +55,7 @@ SpecimenSpec small_paste_spec() {
 
 TEST_CASE("paste config: the shipped paste cube reads the study's mix and the dataset's SG", "[paste]") {
     const CubeConfig c = load_cube_config(fs::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "paste_cube.toml");
-    CHECK(c.representation == "explicit_paste");
+    CHECK(c.representation == exp::Representation::explicit_paste);
     REQUIRE(c.specimen.paste);
     CHECK(c.specimen.paste->mix.sand_to_cementitious_volume == 2.6);
     CHECK(c.specimen.paste->mix.water_cement_ratio == 0.53);
@@ -64,7 +64,7 @@ TEST_CASE("paste config: the shipped paste cube reads the study's mix and the da
     CHECK_FALSE(c.material.families.sand_sand_bonded);
     // The parallel-bond configs stay as they were.
     const CubeConfig pb = load_cube_config(fs::path(GRADEM_SOURCE_DIR) / "experiments" / "configs" / "calibration_cube.toml");
-    CHECK(pb.representation == "parallel_bonds");
+    CHECK(pb.representation == exp::Representation::parallel_bonds);
     CHECK_FALSE(pb.specimen.paste);
 }
 
