@@ -58,7 +58,7 @@ HomogeneityCheck check_homogeneity(const SolveContext& ctx, const Rescaling& r1,
         h.modulus_deviation = max_deviation(r1.prediction, e1, Quantity::modulus);
         h.peak_deviation = max_deviation(r1.prediction, e1, Quantity::peak);
         h.strain_deviation = max_deviation(r1.prediction, e1, Quantity::strain);
-        if (ctx.problem.tension.fitted()) h.tension_deviation = max_deviation(r1.prediction, e1, Quantity::tension);
+        if (!e1.tension_runs.empty()) h.tension_deviation = max_deviation(r1.prediction, e1, Quantity::tension);
         h.holds = h.modulus_deviation <= ctx.problem.solver.homogeneity_tolerance &&
                   h.peak_deviation <= ctx.problem.solver.homogeneity_tolerance;
     }
