@@ -127,11 +127,18 @@ std::optional<PlatenTestCost> platen_test_cost(BondModel model) {
     });
 }
 
-/// The platen strain at which a compression run of this sand is expected to end (plan.hpp, step 4).
-double compression_end_strain(BondModel model, const SandTargets& lab) {
+/// The platen strains at which a compression run of this sand is expected to peak and to end
+/// when it stops at `stop_fraction` of its peak (plan.hpp, step 4).
+struct CompressionStrains {
+    double peak = 0.0, end = 0.0;
+};
+CompressionStrains compression_strains(BondModel model, const SandTargets& lab, double stop_fraction) {
     const double elastic = lab.peak.mean / lab.modulus.mean;
-    if (const auto cost = platen_test_cost(model)) return cost->compression_end_over_elastic * elastic;
-    return kEndOverPeakStrain * lab.strain.mean;
+    const auto cost = platen_test_cost(model);
+    const double peak = cost ? cost->compression_peak_over_elastic * elastic : lab.strain.mean;
+    const double end = cost ? cost->compression_end_over_elastic * elastic : kEndOverPeakStrain * lab.strain.mean;
+    const double tail = (1.0 - stop_fraction) / (1.0 - PlatenTestCost::kMeasuredStopFraction);
+    return {peak, peak + (end - peak) * tail};
 }
 
 /// The runs of each sand on a set, from the stand-in's path: the fitted runs spread over the
@@ -194,10 +201,14 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     cost.settle_steps = probe.settle_steps;
     const exp::PlatenTestSpec& l = config.test.loading;
     const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, material) : l.strain_rate;
-    const double end = compression_end_strain(problem.bond_model(), problem.targets[s]);
-    cost.compression_steps = probe.settle_steps + loading_steps(end, l.ramp_strain, rate, probe.time_step);
+    const CompressionStrains strain = compression_strains(problem.bond_model(), problem.targets[s], l.stop_fraction);
+    const double to_peak = loading_steps(strain.peak, l.ramp_strain, rate, probe.time_step);
+    const double loading = loading_steps(strain.end, l.ramp_strain, rate, probe.time_step);
+    cost.compression_steps = probe.settle_steps + loading;
+    // The run's mean cost factor: settling as probed, then the law's before and after the peak.
     const PlatenTestCost factors = platen_test_cost(problem.bond_model()).value_or(PlatenTestCost{});
-    cost.compression_cost_factor = factors.compression_cost_factor;
+    cost.compression_cost_factor = (probe.settle_steps + factors.pre_peak_cost_factor * to_peak +
+                                    factors.post_peak_cost_factor * (loading - to_peak)) / cost.compression_steps;
     cost.tension_cost_factor = factors.tension_cost_factor;
     cost.compression_runs = counts.compression;
     if (counts.tension > 0) {
@@ -240,8 +251,10 @@ double RunCostPlan::seconds() const {
 std::string test_cost_assumption(BondModel model) {
     std::ostringstream o;
     if (const auto cost = platen_test_cost(model))
-        o << "a compression run ends at a platen strain of " << cost->compression_end_over_elastic
-          << " x sigma_lab/E_lab and costs " << cost->compression_cost_factor << " x per particle-step what the engine timing measured, a tension run "
+        o << "a compression run peaks at a platen strain of " << cost->compression_peak_over_elastic << " x sigma_lab/E_lab and ends at "
+          << cost->compression_end_over_elastic << " x when it stops at " << PlatenTestCost::kMeasuredStopFraction
+          << " x its peak (the tail after the peak in proportion to 1 - stop_fraction), and costs " << cost->pre_peak_cost_factor
+          << " x per particle-step what the engine timing measured up to its peak, " << cost->post_peak_cost_factor << " x after it, a tension run "
           << cost->tension_cost_factor << " x (the " << to_string(model) << "'s PlatenTestCost)";
     else
         o << "a compression run ends at " << kEndOverPeakStrain << " x the lab's strain at peak and costs per particle-step what the engine timing measured (the "

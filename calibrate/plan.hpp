@@ -50,7 +50,7 @@ struct RunCostPlan {
     double particles = 0.0;              ///< mean over the set's seeds
     double time_step_s = 0.0;            ///< [s]
     double seconds_per_particle_step = 0.0;  ///< one thread, the bonded specimen at rest (the probe)
-    double compression_cost_factor = 1.0;    ///< a compression test's cost per particle-step over the probe's
+    double compression_cost_factor = 1.0;    ///< a compression run's mean cost per particle-step over the probe's (the law's PlatenTestCost before and after the peak)
     double tension_cost_factor = 1.0;        ///< a direct-tension test's
     double settle_steps = 0.0;
     double compression_steps = 0.0;      ///< settling + loading

@@ -78,6 +78,16 @@ void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
         throw InputError(ctx.file, line, "key 'calibration.edge_mm': " + *why);
 }
 
+// [calibration] stop_fraction: where every platen test of the calibration stops after its peak
+// (stress under this × the peak), replacing the base config's test.stop_fraction: the targets
+// are at or before the peak, so a calibration need not follow the softening as far as a study.
+void apply_stop_fraction(Context& ctx, double fraction, exp::CubeConfig& base) {
+    if (!(fraction > 0.0 && fraction < 1.0))
+        throw InputError(ctx.file, ctx.keys["calibration.stop_fraction"].line,
+                         "key 'calibration.stop_fraction' = " + show(fraction) + " violates in (0, 1)");
+    base.test.loading.stop_fraction = fraction;
+}
+
 // [calibration] paste_diameter_mm: one coarse-grained paste size for every run, replacing the
 // base config's paste.min/max_diameter_mm (explicit-paste bases only; the same base serves
 // calibrations at several paste sizes).
@@ -111,6 +121,8 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     s.real("edge_mm", edge, 1e-3);
     double paste_diameter = 0.0;  // [m] 0: the base config's paste size
     s.real("paste_diameter_mm", paste_diameter, 1e-3);
+    double stop_fraction = 0.0;  // [-] 0: the base config's test.stop_fraction
+    s.real("stop_fraction", stop_fraction);
     s.finish();
     p.mode = parse_mode(mode, ctx);
     if (base.empty()) throw InputError(ctx.file, 0, "key 'calibration.base' is required: the cube config (specimen, start material, test)");
@@ -128,6 +140,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     }
     if (ctx.keys["calibration.edge_mm"].line > 0) apply_edge(ctx, edge, p.base);
     if (ctx.keys["calibration.paste_diameter_mm"].line > 0) apply_paste_diameter(ctx, paste_diameter, p.base);
+    if (ctx.keys["calibration.stop_fraction"].line > 0) apply_stop_fraction(ctx, stop_fraction, p.base);
     if (p.sands.empty()) throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' is empty");
     const std::set<std::string> unique(p.sands.begin(), p.sands.end());
     if (unique.size() != p.sands.size())

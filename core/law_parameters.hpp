@@ -48,14 +48,21 @@ enum class Calibration : std::uint8_t {
 /// on calibrations of the shipped configs; a law without it is priced at the lab's shape index and
 /// at the probe's cost per particle-step.
 struct PlatenTestCost {
-    /// Platen strain at which a compression test ends (stress down to its stop fraction of the
-    /// peak) over σ_peak/E of the specimen [-]: 1.45 D for a curve of shape index D that drops
-    /// soon after its peak, more for one with a long post-peak tail.
+    /// The stop fraction the end below was measured at (test.stop_fraction's default) [-].
+    static constexpr double kMeasuredStopFraction = 0.7;
+    /// Platen strain at which a compression test ends (stress down to 0.7 × the peak) over
+    /// σ_peak/E of the specimen [-]: 1.45 D for a curve of shape index D that drops soon after
+    /// its peak, more for one with a long post-peak tail.
     double compression_end_over_elastic = 0.0;
-    /// Seconds per particle-step of a compression test over the bonded specimen's at rest [-]
-    /// (broken bonds, new contacts, workers sharing the memory system).
-    double compression_cost_factor = 1.0;
-    double tension_cost_factor = 1.0;  ///< the same for a direct-tension test [-]
+    /// Platen strain at the peak over σ_peak/E [-]; a test that stops at a fraction f of the peak
+    /// is taken to end at peak + (end − peak) (1 − f)/(1 − 0.7).
+    double compression_peak_over_elastic = 0.0;
+    /// Seconds per particle-step of a compression test up to its peak over the bonded specimen's
+    /// at rest [-] (the test's own work, workers sharing the memory system), and after it (broken
+    /// bonds, the contacts the cracks make).
+    double pre_peak_cost_factor = 1.0;
+    double post_peak_cost_factor = 1.0;
+    double tension_cost_factor = 1.0;  ///< a direct-tension test's, over its whole run [-]
 };
 
 /// Typed access to one field of a law's parameter struct P, as a double (every row) and as an

@@ -30,7 +30,9 @@ struct ParallelBondLaw {
     /// Its curves are near-linear to the peak (D = 1.1-1.3) and drop soon after it: a
     /// compression test ends at 1.45 × 1.2 σ/E (parallel-bond calibrations of 2.5 mm cubes).
     static constexpr PlatenTestCost kPlatenTestCost{.compression_end_over_elastic = 1.74,
-                                                    .compression_cost_factor = 1.0,
+                                                    .compression_peak_over_elastic = 1.2,
+                                                    .pre_peak_cost_factor = 1.0,
+                                                    .post_peak_cost_factor = 1.0,
                                                     .tension_cost_factor = 1.0};
 
     struct Context {

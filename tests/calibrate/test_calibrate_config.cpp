@@ -60,6 +60,8 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
         {"bad seeds", "seeds = [1, 1]\n", "", "distinct seeds"},
         {"edge under 3 x the largest grain", "edge_mm = 2.0\n", "", "key 'calibration.edge_mm': genesis.edge"},
         {"edge not positive", "edge_mm = -3.5\n", "", "key 'calibration.edge_mm' must be a positive cube edge"},
+        {"stop fraction of 1", "stop_fraction = 1.0\n", "", "key 'calibration.stop_fraction' = 1.0 violates in (0, 1)"},
+        {"unknown run model", "model = \"fem\"\n", "", "key 'calibration.model' = \"fem\": expected \"dem\" or \"analytic\""},
         {"ITZ factor on a parallel-bond base", "", "[parameters.itz_strength_factor]\nfree = true\n",
          "parameter 'itz_strength_factor' applies to explicit-paste specimens only"},
         {"paste size on a parallel-bond base", "paste_diameter_mm = 0.08\n", "",
@@ -86,6 +88,20 @@ TEST_CASE("calibration.edge_mm replaces the base config's cube edge, and with it
     // The packings (and so the ledger's model fingerprint) change with the edge.
     const auto curve = exp::load_gradation(base.base);
     CHECK(exp::packing_key(curve, base.base.specimen) != exp::packing_key(curve, big.base.specimen));
+}
+
+TEST_CASE("calibration.stop_fraction replaces the base config's, for every test of the calibration and in its run keys", "[calibrate]") {
+    TempDir dir("cal-stop");
+    write_lab(dir.path);
+    const cal::CalibrationProblem base = cal::load_calibration_problem(test::write_problem(dir.path, "", "", "base.toml"));
+    const cal::CalibrationProblem early =
+        cal::load_calibration_problem(test::write_problem(dir.path, "stop_fraction = 0.85\n", "", "early.toml"));
+    CHECK(base.base.test.loading.stop_fraction == 0.7);
+    CHECK(early.base.test.loading.stop_fraction == 0.85);
+    CHECK(cal::validation_problem(early).base.test.loading.stop_fraction == 0.85);
+    const auto a = cal::make_dem_model(base.base, base.sands, true), b = cal::make_dem_model(early.base, early.sands, true);
+    CHECK(a->run_fingerprint(cal::CubeTest::compression) != b->run_fingerprint(cal::CubeTest::compression));
+    CHECK(a->run_fingerprint(cal::CubeTest::tension) != b->run_fingerprint(cal::CubeTest::tension));
 }
 
 TEST_CASE("missing or inconsistent lab results are rejected", "[calibrate]") {

@@ -133,13 +133,29 @@ TEST_CASE("plan: a flat joint's runs are priced with its law's PlatenTestCost", 
     REQUIRE(plan.runs.size() == 1);
     const cal::RunCostPlan& fit = plan.runs.front();
     constexpr PlatenTestCost law = FlatJointLaw::kPlatenTestCost;
-    CHECK(fit.compression_cost_factor == law.compression_cost_factor);
+    // The run's mean factor lies between the law's before and after the peak.
+    CHECK(fit.compression_cost_factor > law.pre_peak_cost_factor);
+    CHECK(fit.compression_cost_factor < law.post_peak_cost_factor);
     CHECK(fit.tension_cost_factor == law.tension_cost_factor);
     REQUIRE(fit.compression_runs > 0);
-    CHECK(fit.seconds() == Approx(fit.particles * fit.seconds_per_particle_step * law.compression_cost_factor *
+    CHECK(fit.seconds() == Approx(fit.particles * fit.seconds_per_particle_step * fit.compression_cost_factor *
                                   fit.compression_runs * fit.compression_steps).epsilon(1e-12));
     CHECK(plan.run_wall_s == Approx(fit.seconds() / std::min(plan.workers, plan.cores)).epsilon(1e-12));
     CHECK(cal::plan_text(plan).find("flat_joint's PlatenTestCost") != std::string::npos);
+
+    // Stopped at 0.85 x the peak, the tail after the peak is half as long: the loading ends at
+    // peak + (end - peak) / 2 = (1.3 + 1.9 / 2) / 3.2 of its length at 0.7 (the half-cosine ramp
+    // aside, a few per mille of these ends).
+    test::write_text(dir.path / "early.toml", "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1]\n"
+                                              "stop_fraction = 0.85\n[targets]\nlab_results = \"lab_results.json\"\n"
+                                              "[solver]\nmax_runs = 4\n[output]\ndir = \"out\"\n");
+    const cal::CalibrationPlan early = cal::plan_calibration(cal::load_calibration_problem(dir.path / "early.toml"), 0.5);
+    const double loading = fit.compression_steps - fit.settle_steps;
+    const double early_loading = early.runs.front().compression_steps - early.runs.front().settle_steps;
+    CHECK(early_loading / loading == Approx((law.compression_peak_over_elastic + 0.5 * (law.compression_end_over_elastic -
+                                                                                       law.compression_peak_over_elastic)) /
+                                            law.compression_end_over_elastic)
+                                         .epsilon(0.02));
 }
 
 TEST_CASE("study plan: the cases the kind asks for, priced on their own specimens, and nothing is written",
