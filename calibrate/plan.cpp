@@ -78,37 +78,38 @@ struct Probe {
 };
 
 /// Bonds `packing` with `material` between the platens and cycles it, as a run settles it, for
-/// about `seconds` on one thread. Settling steps beyond the probe are extrapolated from the
-/// decay of the unbalanced-force ratio (log-linear in steps), at most the settling budget.
+/// about `seconds` on one thread: the cost per particle-step is the median of its 100-step
+/// batches (a batch the machine interrupted, or the first one's set-up, does not move it). The
+/// settling steps are where the unbalanced-force ratio fell under the test's; beyond the probe
+/// they are extrapolated from its decay (log-linear in steps), at most the settling budget.
 Probe probe_engine(const exp::Packing& packing, const exp::MaterialParams& material, const exp::CubeTestSpec& test,
                    double seconds) {
+    constexpr int kBatch = 100;
     omp_set_num_threads(1);
     World world = exp::bonded_cube_specimen(packing, material);
     Probe probe;
     probe.time_step = world.time_step();
     const auto start = Clock::now();
-    std::int64_t steps = 0;
+    std::vector<double> batch_seconds;
+    std::int64_t steps = 0, settled_at = 0;
     double first_ratio = 0.0, ratio = 1.0;
-    bool settled = false;
     while (seconds_since(start) < seconds && steps < test.max_settle_steps) {
-        world.run(100);
-        steps += 100;
+        const auto t = Clock::now();
+        world.run(kBatch);
+        batch_seconds.push_back(seconds_since(t));
+        steps += kBatch;
+        if (settled_at > 0) continue;  // settled: timing only
         ratio = world.unbalanced_force_ratio();
-        if (steps == 100) first_ratio = ratio;
-        if (ratio < test.settle_ratio) {
-            settled = true;
-            break;
-        }
+        if (steps == kBatch) first_ratio = ratio;
+        if (ratio < test.settle_ratio) settled_at = steps;
     }
-    probe.seconds_per_particle_step = seconds_since(start) / (static_cast<double>(steps) * packing.radius.size());
-    probe.settle_steps = static_cast<double>(steps);
-    if (!settled && steps >= test.max_settle_steps) return probe;
-    if (!settled) {
-        const double decay = (std::log(first_ratio) - std::log(ratio)) / static_cast<double>(steps - 100);
-        const double more = decay > 0.0 ? (std::log(ratio) - std::log(test.settle_ratio)) / decay
-                                        : static_cast<double>(test.max_settle_steps);
-        probe.settle_steps = std::min(static_cast<double>(test.max_settle_steps), steps + more);
-    }
+    std::nth_element(batch_seconds.begin(), batch_seconds.begin() + batch_seconds.size() / 2, batch_seconds.end());
+    probe.seconds_per_particle_step = batch_seconds[batch_seconds.size() / 2] / (kBatch * static_cast<double>(packing.radius.size()));
+    probe.settle_steps = static_cast<double>(settled_at > 0 ? settled_at : steps);
+    if (settled_at > 0 || steps >= test.max_settle_steps) return probe;
+    const double decay = (std::log(first_ratio) - std::log(ratio)) / static_cast<double>(steps - kBatch);
+    const double more = decay > 0.0 ? (std::log(ratio) - std::log(test.settle_ratio)) / decay : static_cast<double>(test.max_settle_steps);
+    probe.settle_steps = std::min(static_cast<double>(test.max_settle_steps), steps + more);
     return probe;
 }
 
@@ -132,9 +133,8 @@ std::optional<PlatenTestCost> platen_test_cost(BondModel model) {
 struct CompressionStrains {
     double peak = 0.0, end = 0.0;
 };
-CompressionStrains compression_strains(BondModel model, const SandTargets& lab, double stop_fraction) {
+CompressionStrains compression_strains(const std::optional<PlatenTestCost>& cost, const SandTargets& lab, double stop_fraction) {
     const double elastic = lab.peak.mean / lab.modulus.mean;
-    const auto cost = platen_test_cost(model);
     const double peak = cost ? cost->compression_peak_over_elastic * elastic : lab.strain.mean;
     const double end = cost ? cost->compression_end_over_elastic * elastic : kEndOverPeakStrain * lab.strain.mean;
     const double tail = (1.0 - stop_fraction) / (1.0 - PlatenTestCost::kMeasuredStopFraction);
@@ -201,12 +201,13 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     cost.settle_steps = probe.settle_steps;
     const exp::PlatenTestSpec& l = config.test.loading;
     const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, material) : l.strain_rate;
-    const CompressionStrains strain = compression_strains(problem.bond_model(), problem.targets[s], l.stop_fraction);
+    const std::optional<PlatenTestCost> row = platen_test_cost(problem.bond_model());
+    const CompressionStrains strain = compression_strains(row, problem.targets[s], l.stop_fraction);
     const double to_peak = loading_steps(strain.peak, l.ramp_strain, rate, probe.time_step);
     const double loading = loading_steps(strain.end, l.ramp_strain, rate, probe.time_step);
     cost.compression_steps = probe.settle_steps + loading;
     // The run's mean cost factor: settling as probed, then the law's before and after the peak.
-    const PlatenTestCost factors = platen_test_cost(problem.bond_model()).value_or(PlatenTestCost{});
+    const PlatenTestCost factors = row.value_or(PlatenTestCost{});
     cost.compression_cost_factor = (probe.settle_steps + factors.pre_peak_cost_factor * to_peak +
                                     factors.post_peak_cost_factor * (loading - to_peak)) / cost.compression_steps;
     cost.tension_cost_factor = factors.tension_cost_factor;

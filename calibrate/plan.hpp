@@ -8,7 +8,7 @@
 //      grains genesis would sample (and genesis' step budget as its cost bound);
 //   3. engine timing: the first seed of each sand and specimen set bonded with the start
 //      material and cycled for a few seconds on one thread (what a worker runs): seconds per
-//      particle-step, the time step and the settling steps;
+//      particle-step (the median 100-step batch), the time step and the settling steps;
 //   4. steps per run: settling + the platen travel to the end strain at the test's rate over
 //      the time step. Compression ends at the law's PlatenTestCost::compression_end_over_elastic
 //      × σ_lab/E_lab (core/law_parameters.hpp), or, for a law without that row, at

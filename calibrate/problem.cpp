@@ -55,12 +55,6 @@ std::vector<std::uint64_t> read_seeds(Section& s, const char* key, std::vector<s
     return out;
 }
 
-Mode parse_mode(const std::string& text, Context& ctx) {
-    if (const auto mode = parse_enum<Mode>(text)) return *mode;
-    throw InputError(ctx.file, ctx.keys["calibration.mode"].line,
-                     "key 'calibration.mode' = \"" + text + "\": expected " + enum_names_text<Mode>(NameList::quoted_or));
-}
-
 Method parse_method(const std::string& text, Context& ctx) {
     if (const auto method = parse_enum<Method>(text)) return *method;
     throw InputError(ctx.file, ctx.keys["solver.method"].line,
@@ -82,10 +76,10 @@ void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
 // (stress under this × the peak), replacing the base config's test.stop_fraction: the targets
 // are at or before the peak, so a calibration need not follow the softening as far as a study.
 void apply_stop_fraction(Context& ctx, double fraction, exp::CubeConfig& base) {
-    if (!(fraction > 0.0 && fraction < 1.0))
-        throw InputError(ctx.file, ctx.keys["calibration.stop_fraction"].line,
-                         "key 'calibration.stop_fraction' = " + show(fraction) + " violates in (0, 1)");
     base.test.loading.stop_fraction = fraction;
+    if (auto why = base.test.loading.invalid_reason())
+        throw InputError(ctx.file, ctx.keys["calibration.stop_fraction"].line,
+                         "key 'calibration.stop_fraction' = " + show(fraction) + ": " + *why);
 }
 
 // [calibration] paste_diameter_mm: one coarse-grained paste size for every run, replacing the
@@ -110,8 +104,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     fs::path base;
     s.path("base", base);
     s.choice("model", p.model);
-    std::string mode = "joint";
-    s.text("mode", mode);
+    s.choice("mode", p.mode);
     p.sands = read_strings(s, "sands", {"pre-blended", "Van Buren"});
     s.text("calibrate_on", p.calibrate_on);
     p.seeds = read_seeds(s, "seeds", p.seeds);
@@ -124,7 +117,6 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     double stop_fraction = 0.0;  // [-] 0: the base config's test.stop_fraction
     s.real("stop_fraction", stop_fraction);
     s.finish();
-    p.mode = parse_mode(mode, ctx);
     if (base.empty()) throw InputError(ctx.file, 0, "key 'calibration.base' is required: the cube config (specimen, start material, test)");
     if (!fs::exists(base))
         throw InputError(ctx.file, ctx.keys["calibration.base"].line, "key 'calibration.base': file " + base.string() + " not found");

@@ -60,7 +60,7 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
         {"bad seeds", "seeds = [1, 1]\n", "", "distinct seeds"},
         {"edge under 3 x the largest grain", "edge_mm = 2.0\n", "", "key 'calibration.edge_mm': genesis.edge"},
         {"edge not positive", "edge_mm = -3.5\n", "", "key 'calibration.edge_mm' must be a positive cube edge"},
-        {"stop fraction of 1", "stop_fraction = 1.0\n", "", "key 'calibration.stop_fraction' = 1.0 violates in (0, 1)"},
+        {"stop fraction of 1", "stop_fraction = 1.0\n", "", "key 'calibration.stop_fraction' = 1.0: PlatenTestSpec::stop_fraction = 1 violates in (0, 1)"},
         {"unknown run model", "model = \"fem\"\n", "", "key 'calibration.model' = \"fem\": expected \"dem\" or \"analytic\""},
         {"ITZ factor on a parallel-bond base", "", "[parameters.itz_strength_factor]\nfree = true\n",
          "parameter 'itz_strength_factor' applies to explicit-paste specimens only"},
