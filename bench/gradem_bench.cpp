@@ -6,9 +6,11 @@
 // prints nothing but errors and, with --json, the JSON rows.
 //
 //   gradem-bench [--sizes 20000,200000] [--steps 1000] [--threads 1,2] [--repeat 3] [--json] [--quiet]
-//                [--models M1,M2,...]   (one row set per bond law of core/bond_models.hpp; its rows
-//                carry the law's descriptive parameters, e.g. a joint's element counts)
-//                [--specimens 20000,200000] [--cache-dir DIR] [--bond-gap-um G] [--bonded-fractions 1,0.75]
+//                [--models M1,M2,...]   (one row set per bond law of core/bond_models.hpp; its JSON
+//                rows carry every parameter of the law)
+//                [--set [model:]key=value]... [--sweep [model:]key=v1,v2,...]   (material keys,
+//                bench/material_settings.hpp; a sweep gives one row set per value)
+//                [--specimens 20000,200000] [--cache-dir DIR]
 //                (rows on genesis packings of the pre-blended sand, bonded as a calibration does:
 //                bench/specimen_bench.hpp; without --sizes, only these)
 //   gradem-bench --neighbors 200000 [--threads 1,2] [--repeat 3] [--json]   (neighbour search
@@ -23,6 +25,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,8 +36,8 @@
 #include "core/parallel.hpp"
 #include "bench/full_cube_bench.hpp"
 #include "bench/genesis_bench.hpp"
+#include "bench/material_settings.hpp"
 #include "bench/specimen_bench.hpp"
-#include "core/flat_joint_law.hpp"
 #include "core/world.hpp"
 #include "experiments/virtual_tests/platen_compression.hpp"
 #include "experiments/specimen/quick_packing.hpp"
@@ -57,8 +60,8 @@ struct Options {
     std::vector<BondModel> models{BondModel::parallel_bond};
     std::vector<std::int64_t> specimens;          ///< genesis specimens of about these grain counts
     std::string cache_dir = "out/packing-cache";  ///< their packing cache
-    double gap_um = 0.0;                          ///< bonding gap on specimens [um]; 0: the law's default
-    std::vector<double> bonded_fractions{1.0, 0.75};  ///< flat joint rows: φ_B (the rest slit)
+    std::vector<bench::MaterialSetting> sets;     ///< --set: material keys of every row
+    std::optional<bench::MaterialSetting> sweep;  ///< --sweep: one row set per value
     bench::FullCubeOptions cube;        ///< --full-cube settings
 };
 
@@ -72,7 +75,8 @@ std::string model_list() {
 const std::string kHelp =
     "usage: gradem-bench [--sizes N1,N2,...] [--steps S] [--threads 1,2] [--repeat R] [--json] [--quiet]\n"
     "                    [--models " + model_list() + "]\n"
-    "                    [--specimens N1,N2,...] [--cache-dir DIR] [--bond-gap-um G] [--bonded-fractions F1,F2]\n"
+    "                    [--set [model:]key=value]... [--sweep [model:]key=v1,v2,...]\n"
+    "                    [--specimens N1,N2,...] [--cache-dir DIR]\n"
     "       gradem-bench --neighbors N [--threads 1,2] [--repeat R] [--json]\n"
     "       gradem-bench --genesis N1,N2,... [--json]\n"
     "       gradem-bench --full-cube [--min-diameter-mm D] [--timed N] [--steps S] [--threads T]\n"
@@ -89,8 +93,10 @@ const std::string kHelp =
     "  --specimens N1,N2     rows on genesis packings of the pre-blended sand of about these grain counts,\n"
     "                        bonded as a calibration does (without --sizes: only these rows)\n"
     "  --cache-dir DIR       packing cache of --specimens (default out/packing-cache)\n"
-    "  --bond-gap-um G       bonding gap on --specimens [um] (default: 70, flat joint 20)\n"
-    "  --bonded-fractions F  flat joint rows: fractions of bonded joints, the rest slit (default 1,0.75)\n"
+    "  --set [M:]key=value   a material key (config units, experiments/README.md) on every row, or on\n"
+    "                        model M's rows only; e.g. bond_gap_um=20 (specimens: default 70; lattice:\n"
+    "                        the packing's own gap), bonded_fraction=0.75; repeatable\n"
+    "  --sweep [M:]key=v1,v2 one row set per value of a material key (the rows of models without it: one)\n"
     "  --neighbors N         neighbour-search rows at size ratios 1, 10, 50 instead\n"
     "  --genesis N1,N2,...   genesis rows instead\n"
     "  --full-cube           the full-size cube's N, memory, seconds per 1000 steps and whole-test estimate\n"
@@ -118,8 +124,8 @@ Options parse(int argc, char** argv) {
         if (a == "--sizes") o.sizes = parse_list<std::int64_t>(value(), a), o.sizes_given = true;
         else if (a == "--specimens") o.specimens = parse_list<std::int64_t>(value(), a);
         else if (a == "--cache-dir") o.cache_dir = value();
-        else if (a == "--bond-gap-um") o.gap_um = parse_one<double>(value(), a);
-        else if (a == "--bonded-fractions") o.bonded_fractions = parse_list<double>(value(), a);
+        else if (a == "--set") o.sets.push_back(bench::parse_material_setting(a, value()));
+        else if (a == "--sweep") o.sweep = bench::parse_material_setting(a, value());
         else if (a == "--threads") o.threads = parse_list<int>(value(), a);
         else if (a == "--steps") o.steps = parse_one<std::int64_t>(value(), a), o.steps_given = true;
         else if (a == "--full-cube") o.full_cube = true;
@@ -148,11 +154,8 @@ Options parse(int argc, char** argv) {
     }
     if (o.steps < 1 || o.repeat < 1 || o.sizes.empty() || o.threads.empty())
         throw bench::UsageError("--steps, --repeat, --sizes and --threads must be positive");
-    for (double f : o.bonded_fractions)
-        if (!(f >= 0.0 && f <= 1.0)) throw bench::UsageError("--bonded-fractions must lie in [0, 1]");
     for (std::int64_t n : o.specimens)
         if (n < 100) throw bench::UsageError("--specimens must be at least 100 grains");
-    if (!(o.gap_um >= 0.0)) throw bench::UsageError("--bond-gap-um must be >= 0");
     if (!o.specimens.empty() && !o.sizes_given) o.sizes.clear();
     if (!(o.cube.min_diameter > 0.0) || o.cube.timed < 1000 || !(o.cube.transits_to_stop > 0.0) || !(o.cube.time_step >= 0.0))
         throw bench::UsageError("--min-diameter-mm and --transits must be > 0, --time-step >= 0, --timed >= 1000");
@@ -161,27 +164,23 @@ Options parse(int argc, char** argv) {
 
 using bench::peak_rss_bytes;
 
-/// Acting bonds at the end of a run, by the path the flat joint's pass takes them: fully
-/// bonded (the vectorised pass), partly bonded, and unbonded interfaces (slit, gapped or broken
-/// joints still in compression); for the other laws every acting bond is "fully bonded".
-struct JointCounts {
-    std::int64_t fully_bonded = 0, partly_bonded = 0, unbonded = 0;
+/// Acting bonds at the end of a run, by the path their law's own pass takes them
+/// (Law::on_vector_path, core/bond_law.hpp): its SIMD lanes or its scalar kernel. Laws without
+/// such a pass count every acting bond as on the vector path (share 0, as they have no other).
+struct PathCounts {
+    std::int64_t vector = 0, scalar = 0;
 };
 
-JointCounts count_joints(const World& world) {
-    JointCounts c;
-    const auto& bonds = world.bonds();
-    for (std::size_t k = 0; k < bonds.size(); ++k) {
-        if (!bond_acts(bonds[k])) continue;
-        if (bonds[k].model != BondModel::flat_joint) {
-            ++c.fully_bonded;
-            continue;
-        }
-        const std::span<const double> side = world.bond_side_state(k);
-        const std::size_t elements = (side.size() - kFlatJointHeader) / kFlatElementSize;
-        std::size_t bonded = 0;
-        for (std::size_t e = 0; e < elements; ++e) bonded += flat_joint_element_bonded(side, e);
-        ++(bonded == elements ? c.fully_bonded : bonded > 0 ? c.partly_bonded : c.unbonded);
+PathCounts count_paths(const World& world) {
+    PathCounts c;
+    for (const ParallelBond& b : world.bonds()) {
+        if (!bond_acts(b)) continue;
+        const bool lanes = visit_bond_law(b.model, [&](auto kernel) {
+            using Law = decltype(kernel);
+            if constexpr (requires { Law::on_vector_path(b); }) return Law::on_vector_path(b);
+            else return true;
+        });
+        ++(lanes ? c.vector : c.scalar);
     }
     return c;
 }
@@ -192,6 +191,8 @@ struct RowCase {
     const exp::QuickPacking* lattice = nullptr;
     const exp::Packing* specimen = nullptr;
     bench::BondCase bond;
+    std::string swept_key;  ///< the --sweep key this row set has a value of ("" none)
+    double swept_value = 0.0;
 };
 
 struct Sample {
@@ -204,25 +205,33 @@ struct Sample {
     StepProfile profile;
     std::size_t world_bytes = 0, rss = 0;
     std::int64_t contacts = 0, pairs = 0;
-    JointCounts joints;
+    PathCounts paths;
 };
 
-// A bonded lattice packing between platens closing at a strain rate of 1/s (typical test speed).
+/// The material of a lattice row: contact and bond E* 10 GPa, k_n/k_s 1.5, μ 0.5, σ̄_c 8 MPa, c̄
+/// 16 MPa (cv 0.2), every law's other parameters at their defaults; then the case's settings.
+exp::MaterialParams lattice_material(const bench::BondCase& c) {
+    exp::MaterialParams m;
+    m.contact.effective_modulus = 10.0e9;
+    m.contact.stiffness_ratio = 1.5;
+    m.contact.friction = 0.5;
+    m.bond.model = c.model;
+    m.bond.effective_modulus = 10.0e9;
+    m.bond.tensile_strength_mean = 8.0e6;
+    m.bond.tensile_strength_std = 1.6e6;
+    m.bond.cohesion_mean = 16.0e6;
+    m.bond.cohesion_std = 3.2e6;
+    for (const auto& [key, value] : c.settings) bench::apply_material_value(m, key, value);
+    if (auto why = m.bond.invalid_reason()) throw bench::UsageError(*why);
+    return m;
+}
+
+// A bonded lattice packing between platens closing at a strain rate of 1/s (typical test speed),
+// bonded across the packing's own gap unless bond_gap_um is set.
 World make_world(const exp::QuickPacking& packing, const bench::BondCase& c = {}) {
-    ContactParams contact;
-    contact.effective_modulus = 10.0e9;
-    contact.stiffness_ratio = 1.5;
-    contact.friction = 0.5;
-    World world(packing.particles, contact, SimParams{});
-    BondParams bond;
-    bond.effective_modulus = 10.0e9;
-    bond.tensile_strength_mean = 8.0e6;
-    bond.tensile_strength_std = 1.6e6;
-    bond.cohesion_mean = 16.0e6;
-    bond.cohesion_std = 3.2e6;
-    bond.model = c.model;
-    bond.law<FlatJointLaw>().bonded_fraction = c.bonded_fraction;
-    world.install_bonds(bond, c.gap_um > 0.0 ? 1e-6 * c.gap_um : packing.bond_gap);
+    const exp::MaterialParams m = lattice_material(c);
+    World world(packing.particles, m.contact, SimParams{});
+    world.install_bonds(m.bond, m.bond_gap_absolute > 0.0 ? m.bond_gap_absolute : packing.bond_gap);
     exp::add_platens(world, 0.5);
     const double height = world.walls()[1].point.z - world.walls()[0].point.z;
     world.wall(0).velocity = {0, 0, 0.5 * height};
@@ -232,10 +241,11 @@ World make_world(const exp::QuickPacking& packing, const bench::BondCase& c = {}
 
 World make_row_world(const RowCase& row, double& gap_um) {
     if (row.specimen) {
-        gap_um = row.bond.gap_um > 0.0 ? row.bond.gap_um : bench::default_gap_um(row.bond.model);
+        gap_um = 1e6 * bench::specimen_material(row.bond).bond_gap_absolute;
         return bench::specimen_world(*row.specimen, row.bond);
     }
-    gap_um = row.bond.gap_um > 0.0 ? row.bond.gap_um : 1e6 * row.lattice->bond_gap;
+    const double gap = lattice_material(row.bond).bond_gap_absolute;
+    gap_um = 1e6 * (gap > 0.0 ? gap : row.lattice->bond_gap);
     return make_world(*row.lattice, row.bond);
 }
 
@@ -270,7 +280,7 @@ Sample run_once(const RowCase& row, int threads, std::int64_t steps) {
     s.rss = peak_rss_bytes();
     s.pairs = static_cast<std::int64_t>(world.pair_count());
     s.contacts = static_cast<std::int64_t>(world.active_contact_count());
-    s.joints = count_joints(world);
+    s.paths = count_paths(world);
     if (world.status() != RunStatus::running) bench::warn("gradem-bench", "run diverged: " + world.status_reason());
     return s;
 }
@@ -280,13 +290,12 @@ Sample median_of(std::vector<Sample> runs) {
     return runs[runs.size() / 2];
 }
 
-/// The law's descriptive parameters as JSON members ("radial_elements": 1, ...).
+/// Every parameter of the law as JSON members ("radial_elements": 1, ...).
 void print_law_rows(const BondParams& params) {
     visit_bond_law(params.model, [&](auto kernel) {
         using Law = decltype(kernel);
         const typename Law::Params& own = law_params<Law>(params);
         for (const auto& row : Law::kParameters) {
-            if (!row.descriptive) continue;
             if (row.field.integer)
                 std::printf("\"%.*s\": %lld, ", static_cast<int>(row.key.size()), row.key.data(),
                             static_cast<long long>(row.field.get_int(own)));
@@ -298,59 +307,71 @@ void print_law_rows(const BondParams& params) {
 void print_sample(const Sample& s, double speedup, bool json) {
     const double pss = static_cast<double>(s.n) * static_cast<double>(s.steps) / s.seconds;
     const double per = static_cast<double>(s.n);
-    const bool joint = s.bond_params.model == BondModel::flat_joint;
-    const double bonded_fraction = joint ? s.bond_params.law<FlatJointLaw>().bonded_fraction : 1.0;
-    const JointCounts& j = s.joints;
-    const double acting = static_cast<double>(j.fully_bonded + j.partly_bonded + j.unbonded);
-    const double scalar_share = acting > 0 ? static_cast<double>(j.partly_bonded + j.unbonded) / acting : 0.0;
+    const PathCounts& p = s.paths;
+    const double acting = static_cast<double>(p.vector + p.scalar);
+    const double scalar_share = acting > 0 ? static_cast<double>(p.scalar) / acting : 0.0;
     if (json) {
         std::printf("{\"model\": \"%s\", ", bond_model_name(s.bond_params.model));
         print_law_rows(s.bond_params);
+        if (!s.row.swept_key.empty()) std::printf("\"sweep\": \"%s\", \"sweep_value\": %.6g, ", s.row.swept_key.c_str(), s.row.swept_value);
         std::printf("\"n\": %lld, \"bonds\": %lld, \"pairs\": %lld, \"contacts\": %lld, \"threads\": %d, "
                     "\"steps\": %lld, \"seconds\": %.4f, \"particle_steps_per_s\": %.4g, "
                     "\"neighbors_s\": %.4f, \"contacts_s\": %.4f, \"bonds_s\": %.4f, \"walls_s\": %.4f, "
                     "\"integrate_s\": %.4f, \"rebuilds\": %lld, \"bytes_per_particle\": %.1f, "
                     "\"peak_rss_bytes_per_particle\": %.1f, \"speedup_vs_1_thread\": %.3f, "
-                    "\"packing\": \"%s\", \"bond_gap_um\": %.4g, \"bonded_fraction\": %.4g, \"slit_fraction\": %.4g, "
-                    "\"joints_fully_bonded\": %lld, \"joints_partly_bonded\": %lld, \"joints_unbonded\": %lld, "
-                    "\"scalar_path_share\": %.4f}\n",
+                    "\"packing\": \"%s\", \"bond_gap_um\": %.4g, "
+                    "\"bonds_vector_path\": %lld, \"bonds_scalar_path\": %lld, \"scalar_path_share\": %.4f}\n",
                     static_cast<long long>(s.n), static_cast<long long>(s.bonds),
                     static_cast<long long>(s.pairs), static_cast<long long>(s.contacts), s.threads,
                     static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                     s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
                     static_cast<long long>(s.profile.rebuilds), static_cast<double>(s.world_bytes) / per,
-                    static_cast<double>(s.rss) / per, speedup, s.row.packing, s.gap_um, bonded_fraction,
-                    joint ? 1.0 - bonded_fraction - s.bond_params.law<FlatJointLaw>().gapped_fraction : 0.0,
-                    static_cast<long long>(j.fully_bonded), static_cast<long long>(j.partly_bonded),
-                    static_cast<long long>(j.unbonded), scalar_share);
+                    static_cast<double>(s.rss) / per, speedup, s.row.packing, s.gap_um,
+                    static_cast<long long>(p.vector), static_cast<long long>(p.scalar), scalar_share);
         return;
     }
-    std::printf("%-11s %-7s %4.2f %5.0f %9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f\n",
-                bond_model_name(s.bond_params.model), s.row.packing, bonded_fraction, s.gap_um,
+    char swept[32] = "-";
+    if (!s.row.swept_key.empty()) std::snprintf(swept, sizeof swept, "%.4g", s.row.swept_value);
+    std::printf("%-13s %-7s %6s %5.0f %9lld %9lld %3d %6lld %8.3f %11.3g | %7.3f %7.3f %7.3f %7.3f %7.3f | %6.0f %6.0f | %5.2f %5.2f\n",
+                bond_model_name(s.bond_params.model), s.row.packing, swept, s.gap_um,
                 static_cast<long long>(s.n), static_cast<long long>(s.bonds), s.threads,
                 static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                 s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
-                static_cast<double>(s.world_bytes) / per, static_cast<double>(s.rss) / per, speedup);
+                static_cast<double>(s.world_bytes) / per, static_cast<double>(s.rss) / per, speedup, scalar_share);
 }
 
-/// Every (model, bonded fraction) of the options on one packing: its rows for each thread count.
+/// One row set (every thread count) of one bond case on one packing.
+void run_thread_rows(const Options& o, const RowCase& row) {
+    double base_seconds = 0.0;
+    for (int t : o.threads) {
+        std::vector<Sample> runs;
+        for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(row, t, o.steps));
+        const Sample m = median_of(runs);
+        if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
+        const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
+        print_sample(m, speedup, o.json);
+        std::fflush(stdout);
+    }
+}
+
+/// Every model of the options on one packing, with the --set keys that apply to it: one row set,
+/// or one per --sweep value where the sweep applies to the model.
 void run_rows(const Options& o, RowCase row) {
     for (BondModel model : o.models) {
-        const std::vector<double> fractions =
-            model == BondModel::flat_joint ? o.bonded_fractions : std::vector<double>{1.0};
-        for (double fraction : fractions) {
-            row.bond.model = model;
-            row.bond.bonded_fraction = fraction;
-            double base_seconds = 0.0;
-            for (int t : o.threads) {
-                std::vector<Sample> runs;
-                for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(row, t, o.steps));
-                const Sample m = median_of(runs);
-                if (t == o.threads.front()) base_seconds = m.seconds * t / o.threads.front();
-                const double speedup = (o.threads.front() == 1 && base_seconds > 0) ? base_seconds / m.seconds : 0.0;
-                print_sample(m, speedup, o.json);
-                std::fflush(stdout);
-            }
+        row.bond.model = model;
+        row.bond.settings.clear();
+        for (const bench::MaterialSetting& set : o.sets)
+            if (bench::setting_applies(set, model)) row.bond.settings.emplace_back(set.key, set.values.front());
+        if (!o.sweep || !bench::setting_applies(*o.sweep, model)) {
+            run_thread_rows(o, row);
+            continue;
+        }
+        for (double v : o.sweep->values) {
+            RowCase swept = row;
+            swept.bond.settings.emplace_back(o.sweep->key, v);
+            swept.swept_key = o.sweep->key;
+            swept.swept_value = v;
+            run_thread_rows(o, swept);
         }
     }
 }
@@ -421,9 +442,9 @@ int main(int argc, char** argv) {
         if (!o.json) {
             std::printf("gradem-bench: bonded packings (lattice: radius ratio 3; genesis: the pre-blended sand) "
                         "between closing platens; median of %d runs\n", o.repeat);
-            std::printf("%-11s %-7s %4s %5s %9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s\n", "model",
-                        "packing", "fB", "gapum", "N", "bonds", "thr", "steps", "seconds", "p-steps/s", "neigh",
-                        "contact", "bonds", "walls", "integr", "B/p", "RSS/p", "speedup");
+            std::printf("%-13s %-7s %6s %5s %9s %9s %3s %6s %8s %11s | %7s %7s %7s %7s %7s | %6s %6s | %5s %5s\n", "model",
+                        "packing", "sweep", "gapum", "N", "bonds", "thr", "steps", "seconds", "p-steps/s", "neigh",
+                        "contact", "bonds", "walls", "integr", "B/p", "RSS/p", "speedup", "scalar");
         }
         for (std::int64_t n : o.sizes) {
             exp::QuickPackingSpec spec;
@@ -438,7 +459,6 @@ int main(int argc, char** argv) {
             RowCase row;
             row.packing = "genesis";
             row.specimen = &specimen;
-            row.bond.gap_um = o.gap_um;
             run_rows(o, row);
         }
         return 0;

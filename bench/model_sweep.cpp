@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "bench/bench_args.hpp"
+#include "bench/material_settings.hpp"
 #include "experiments/config/cube_config.hpp"
 #include "experiments/virtual_tests/cube_test.hpp"
 #include "experiments/config/material_table.hpp"
@@ -62,12 +63,6 @@ constexpr const char* kUsage =
 using bench::parse_number;
 using bench::split_list;
 
-const exp::MaterialParameter& row(const std::string& key) {
-    const exp::MaterialParameter* p = exp::find_material_parameter(key);
-    if (!p) throw bench::UsageError("unknown material key '" + key + "' (see experiments/config/material_table.cpp)");
-    return *p;
-}
-
 Options parse(int argc, char** argv) {
     Options o;
     for (bench::ArgReader args(argc, argv); args.next();) {
@@ -97,7 +92,7 @@ Options parse(int argc, char** argv) {
             const auto eq = v.find('=');
             if (eq == std::string::npos) throw bench::UsageError(a + " " + v + ": expected key=value");
             const std::string key = v.substr(0, eq);
-            (void)row(key);
+            (void)bench::material_row(key);
             if (a == "--set") o.sets.emplace_back(key, parse_number(v.substr(eq + 1), a + " " + key));
             else {
                 Sweep s{key, {}};
@@ -116,14 +111,6 @@ Options parse(int argc, char** argv) {
     }
     if (o.config.empty()) throw bench::UsageError(std::string("no cube config given: ") + kUsage);
     return o;
-}
-
-void apply(exp::MaterialParams& m, const std::string& key, double value) {
-    const exp::MaterialParameter& p = row(key);
-    if (!p.applies_to(m.bond.model))
-        throw bench::UsageError("material key '" + key + "' belongs to " + exp::model_names(p.models));
-    if (p.integer) p.set_int(m, static_cast<std::int64_t>(value));
-    else exp::apply_calibration_value(p, m, value);
 }
 
 std::string json_string(const std::string& s) { return "\"" + s + "\""; }
@@ -200,12 +187,12 @@ int main(int argc, char** argv) {
             if (!m) throw bench::UsageError("--model " + o.model + ": unknown (known: " + exp::bond_model_names() + ")");
             material.bond.model = *m;
         }
-        for (const auto& [key, v] : o.sets) apply(material, key, v);
+        for (const auto& [key, v] : o.sets) bench::apply_material_value(material, key, v);
         run_point(base, material, "base", 0.0, o);
         for (const Sweep& s : o.sweeps)
             for (double v : s.values) {
                 exp::MaterialParams m = material;
-                apply(m, s.key, v);
+                bench::apply_material_value(m, s.key, v);
                 run_point(base, m, s.key, v, o);
             }
         return 0;

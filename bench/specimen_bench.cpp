@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "bench/genesis_bench.hpp"
-#include "core/flat_joint_law.hpp"
+#include "bench/material_settings.hpp"
 #include "experiments/virtual_tests/cube_specimen.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 
@@ -30,8 +30,6 @@ exp::SpecimenSpec specimen_spec(std::int64_t grains) {
 
 }  // namespace
 
-double default_gap_um(BondModel model) { return model == BondModel::flat_joint ? 20.0 : 70.0; }
-
 exp::Packing specimen_packing(std::int64_t grains, const std::filesystem::path& cache_dir, double& seconds,
                               bool& cached) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -40,32 +38,26 @@ exp::Packing specimen_packing(std::int64_t grains, const std::filesystem::path& 
     return k;
 }
 
-BondParams bench_bond_params(const BondCase& c) {
-    BondParams bond;
-    bond.model = c.model;
-    bond.effective_modulus = 11.0e9;
-    bond.stiffness_ratio = 1.5;
-    bond.tensile_strength_mean = 17.0e6;
-    bond.tensile_strength_std = 0.2 * 17.0e6;
-    bond.cohesion_mean = 8.5e6;
-    bond.cohesion_std = 0.2 * 8.5e6;
-    FlatJointParams& joint = bond.law<FlatJointLaw>();
-    joint.radial_elements = 1;
-    joint.angular_elements = 4;
-    joint.bonded_fraction = c.bonded_fraction;
-    joint.gapped_fraction = 0.0;
-    return bond;
-}
-
-World specimen_world(const exp::Packing& packing, const BondCase& c) {
+exp::MaterialParams specimen_material(const BondCase& c) {
     exp::MaterialParams m;
     m.contact.effective_modulus = 11.0e9;
     m.contact.stiffness_ratio = 1.5;
     m.contact.friction = 0.5;
-    m.bond = bench_bond_params(c);
-    m.bond_gap_absolute = 1e-6 * (c.gap_um > 0.0 ? c.gap_um : default_gap_um(c.model));
-    if (auto why = m.invalid_reason()) throw std::invalid_argument(*why);
-    World world = exp::bonded_cube_specimen(packing, m);
+    m.bond.model = c.model;
+    m.bond.effective_modulus = 11.0e9;
+    m.bond.stiffness_ratio = 1.5;
+    m.bond.tensile_strength_mean = 17.0e6;
+    m.bond.tensile_strength_std = 0.2 * 17.0e6;
+    m.bond.cohesion_mean = 8.5e6;
+    m.bond.cohesion_std = 0.2 * 8.5e6;
+    m.bond_gap_absolute = 1e-6 * kSpecimenGapUm;
+    for (const auto& [key, value] : c.settings) apply_material_value(m, key, value);
+    if (auto why = m.invalid_reason()) throw UsageError(*why);
+    return m;
+}
+
+World specimen_world(const exp::Packing& packing, const BondCase& c) {
+    World world = exp::bonded_cube_specimen(packing, specimen_material(c));
     const double height = world.walls()[1].point.z - world.walls()[0].point.z;
     world.wall(0).velocity = {0, 0, 0.5 * height};  // strain rate 1/s, as the lattice rows
     world.wall(1).velocity = {0, 0, -0.5 * height};

@@ -9,32 +9,36 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/world.hpp"
 #include "experiments/specimen/genesis.hpp"
+#include "experiments/virtual_tests/material_params.hpp"
 
 namespace gradem::bench {
 
-/// One bonded set-up of a row: the law, its bonding gap and (flat joint) the bonded fraction
-/// (the rest slit: no gapped joints).
+/// One bonded set-up of a row: the law and the material keys set on it (config units, as
+/// `--set` gives them), applied after the row's base material.
 struct BondCase {
     BondModel model = BondModel::parallel_bond;
-    double gap_um = 0.0;            ///< bonding gap [um]; 0: the packing's own (lattice: its coordination gap)
-    double bonded_fraction = 1.0;   ///< flat joint φ_B [-]
+    std::vector<std::pair<std::string, double>> settings;  ///< material-table key, value
 };
 
-/// The default bonding gap of a law on a specimen [um], as the calibrated configs use it:
-/// 70 for the parallel and soft bond, 20 for the flat joint.
-double default_gap_um(BondModel model);
+/// The bonding gap of the specimen rows unless bond_gap_um is set [um]: the parallel-bond
+/// calibration's gap, for every law.
+inline constexpr double kSpecimenGapUm = 70.0;
 
 /// The genesis packing of about `grains` grains, from `cache_dir` or generated and saved there;
 /// `seconds` receives the genesis time (0 when it came from the cache), `cached` whether it did.
 exp::Packing specimen_packing(std::int64_t grains, const std::filesystem::path& cache_dir, double& seconds,
                               bool& cached);
 
-/// The bond parameters of a bench row (E-bar 11 GPa, sigma-bar_c 17 MPa, c-bar 8.5 MPa, cv 0.2:
-/// the parallel-bond calibration's start point; flat joint N_r 1, N_alpha 4, the rest slit).
-BondParams bench_bond_params(const BondCase& c);
+/// The material of a specimen row: contact and bond E* 11 GPa, k_n/k_s 1.5, μ 0.5, σ̄_c 17 MPa,
+/// c̄ 8.5 MPa (cv 0.2: the parallel-bond calibration's start point), every law's other
+/// parameters at their defaults, a 70 um bonding gap; then the case's settings. Invalid: a
+/// UsageError naming the rule.
+exp::MaterialParams specimen_material(const BondCase& c);
 
 /// The packing bonded as a cube test does, between the platens, closing at a strain rate of 1/s.
 World specimen_world(const exp::Packing& packing, const BondCase& c);

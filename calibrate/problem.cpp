@@ -55,12 +55,6 @@ std::vector<std::uint64_t> read_seeds(Section& s, const char* key, std::vector<s
     return out;
 }
 
-Method parse_method(const std::string& text, Context& ctx) {
-    if (const auto method = parse_enum<Method>(text)) return *method;
-    throw InputError(ctx.file, ctx.keys["solver.method"].line,
-                     "key 'solver.method' = \"" + text + "\": unknown solver (known: " + enum_names_text<Method>() + ")");
-}
-
 // [calibration] edge_mm: the specimen edge of every run, replacing the base config's
 // genesis.edge_mm (the same base serves calibrations at several specimen sizes).
 void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
@@ -245,8 +239,7 @@ void read_parameters(Context& ctx, const toml::table& root, CalibrationProblem& 
 /// [targets] tension*: the direct-tension target's keys (read into p.tension, checked here).
 void read_tension_target(Context& ctx, Section& s, CalibrationProblem& p) {
     TensionTarget& t = p.tension;
-    std::string source = to_string(t.source);
-    s.text("tension", source);
+    s.choice("tension", t.source);
     s.real("tension_ratio", t.ratio);
     s.real("tension_ratio_low", t.ratio_low);
     s.real("tension_ratio_high", t.ratio_high);
@@ -254,8 +247,6 @@ void read_tension_target(Context& ctx, Section& s, CalibrationProblem& p) {
     s.real("tension_weight", p.weights.tension);
     s.text("tension_basis", t.basis);
     auto line = [&](const char* key) { return ctx.keys[std::string("targets.") + key].line; };
-    if (const auto parsed = parse_enum<TensionSource>(source)) t.source = *parsed;
-    else throw InputError(ctx.file, line("tension"), "key 'targets.tension' = \"" + source + "\": expected one of " + enum_names_text<TensionSource>());
     if (!t.fitted()) return;
     if (!(t.ratio > 1.0))
         throw InputError(ctx.file, line("tension_ratio"), "key 'targets.tension_ratio' = " + show(t.ratio) + " violates > 1 (σc/σt)");
@@ -385,9 +376,8 @@ void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& 
 
 void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
     Section s(ctx, root, "solver");
-    std::string method = "scaling";
-    s.text("method", method);
     SolverSettings& v = p.solver;
+    s.choice("method", v.method);
     s.integer("max_runs", v.max_runs, 1);
     s.real("tolerance", v.tolerance);
     s.real("fd_step", v.fd_step);
@@ -395,7 +385,6 @@ void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
     s.real("penalty", v.penalty);
     s.integer("seed", v.seed, 0);
     s.finish();
-    v.method = parse_method(method, ctx);
     auto bad = [&](const char* key, const std::string& rule) {
         throw InputError(ctx.file, ctx.keys[std::string("solver.") + key].line, std::string("key 'solver.") + key + "' " + rule);
     };

@@ -30,6 +30,9 @@
 //                                              them (core/law_parameters.hpp, calibrate/plan.cpp)
 //     compute_all(pass, dt) -> BondPassEnergy  the law's own pass over every bond, instead of
 //                                              the World's generic loop (core/bond_pass.hpp)
+//     on_vector_path(bond) -> bool             with compute_all: whether that pass takes this
+//                                              acting bond in its SIMD lanes (else its scalar
+//                                              kernel; gradem-bench reports the share)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -54,19 +57,19 @@ enum class BondState : std::uint8_t { none = 0, broken_tension = 1, broken_shear
 
 /// One bond. Stiffnesses come from the World's BondParams (they depend only on the radii and
 /// Ē*); strengths are per bond (drawn at installation). The force fields are what the bond
-/// TRANSMITS (for the soft bond: the damaged forces; for the flat joint: the resultant of its
-/// elements about the contact point). Law-specific state lives in the World's side array.
+/// TRANSMITS (for a damage law: the damaged forces; for a law of several elements: their
+/// resultant about the contact point). Law-specific state lives in the World's side array.
 struct ParallelBond {
     std::int32_t i = -1, j = -1;   ///< particle indices, i < j
     std::int32_t slot = -1;        ///< index of the pair in the World's interaction list
     BondState state = BondState::intact;
     BondModel model{};             ///< the law this bond follows (0: the parallel bond)
     std::uint8_t family_pair = 0;  ///< its parameters: World::bond_family_params()[family_pair]
-    /// 1 while a bond that is not (or no longer) bonded still acts as an interface (a flat
-    /// joint whose elements are all unbonded: it carries compression and friction until its
-    /// surfaces separate); its law keeps stepping it, and it replaces the pair's contact. A flat
-    /// joint that is intact but has an unbonded element holds 2 (kPartlyBonded,
-    /// flat_joint_law.hpp), so its pass tells fully bonded joints from the record alone.
+    /// 1 while a bond that is not (or no longer) bonded still acts as an interface (a joint
+    /// whose elements are all unbonded: it carries compression and friction until its
+    /// surfaces separate); its law keeps stepping it, and it replaces the pair's contact. A law of
+    /// several elements may keep its own marks here (e.g. an intact bond with an unbonded
+    /// element), so its pass tells fully bonded bonds from the record alone.
     std::uint8_t interface = 0;
     double tensile_strength = 0.0; ///< σ̄_c [Pa]
     double cohesion = 0.0;         ///< c̄ [Pa]

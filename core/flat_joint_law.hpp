@@ -1,7 +1,7 @@
 #pragma once
 // Flat joint (Potyondy 2012, "A flat-jointed bonded-particle material for hard rock"; PFC's
 // flatjoint, 3D; docs/bond_laws.md "Flat joint"). The interface is the bond disc of radius
-// R̄ = λ̄ min(R_A, R_B) split into N_r x N_α annular-sector elements (flat_joint_geometry.hpp),
+// R̄ = λ̄ min(R_A, R_B) split into N_r x N_α annular-sector elements (disc_elements.hpp),
 // in a frame (t1, t2) installed once and carried with the pair (rotate_into_plane).
 //
 // Kinematics, per step, with the pair's increments (pair_kinematics.hpp): the joint keeps its
@@ -17,7 +17,7 @@
 // breaks in tension if σ_e = F_n,e/A_e >= σ̄_c, else in shear if
 //     τ_e = |F_s,e|/A_e >= c̄ - min(σ_e, σ̄_c) tan φ̄      (σ tension +, so compression adds).
 // Unbonded element (broken, or of a slit or gapped joint): normal stress k̄_n min(g(x), 0)
-// integrated over the element's compressed part (closed form, flat_joint_geometry.hpp), so a partly
+// integrated over the element's compressed part (closed form, disc_elements.hpp), so a partly
 // open element carries its share and a closed one its full bending stiffness; shear Coulomb,
 // |F_s,e| <= μ |F_n,e| (μ = FlatJointParams::residual_friction), slip energy counted.
 // Resultant on B about the contact point: F = Σ (F_s,e - F_n,e n), M = Σ (x_e x F_s,e + n x P_e)
@@ -28,7 +28,7 @@
 // bonded (φ_B: every element bonded, g_0 = 0), gapped (φ_G: unbonded, initial gap
 // g_0 = gap_ratio R̄) and slit (the rest: unbonded, g_0 = 0).
 // ParallelBond::interface of a joint: 0 every element bonded, kPartlyBonded (2) intact with an
-// unbonded element (so the vectorised pass, world_flat_joints.cpp, tells the fully bonded joints
+// unbonded element (so the vectorised pass, flat_joint_pass.cpp, tells the fully bonded joints
 // from the bond record alone, without reading the element flags of the side state), 1 none bonded.
 // A joint with no bonded element stays an interface (BondState none for slit and gapped joints,
 // broken_* once its last element broke; ParallelBond::interface = 1) until its surfaces have
@@ -53,7 +53,7 @@
 #include <string>
 #include <vector>
 
-#include "core/flat_joint_geometry.hpp"
+#include "core/disc_elements.hpp"
 #include "core/law_parameters.hpp"
 #include "core/parallel_bond_law.hpp"
 #include "core/random.hpp"
@@ -135,7 +135,7 @@ struct JointFrame {
 
 /// The frame after this step's increments from the stored header (axis t1, bending θ_b, twist
 /// θ_t, U_n); `bend_total` receives the carried θ_b. Pure: the vectorised pass over joints
-/// (world_flat_joints.cpp) calls it as carry_frame() does, so both give the same bits.
+/// (flat_joint_pass.cpp) calls it as carry_frame() does, so both give the same bits.
 inline JointFrame advance_frame(const Vec3& axis0, const Vec3& bend0, double twist0, double normal0,
                                 const PairKinematics& kin, Vec3& bend_total) {
     JointFrame f;
@@ -192,7 +192,7 @@ inline JointStep joint_step(const JointFrame& f, double scale, const BondStiffne
 struct ElementTrial {
     double xy = 0, xz = 0, inv_ksa = 0, opening = 0, du1 = 0, du2 = 0, s1 = 0, s2 = 0;
 };
-inline ElementTrial element_trial(const FlatElementGeometry& g, const JointFrame& f, const JointStep& j, double old1,
+inline ElementTrial element_trial(const DiscElement& g, const JointFrame& f, const JointStep& j, double old1,
                                   double old2) {
     ElementTrial t;
     t.xy = j.R * g.y;
@@ -238,7 +238,7 @@ struct NormalLoad {
 
 /// Linear stress field over the whole element (bonded, or unbonded and closed everywhere):
 /// F_n = k̄_n A g_e, P = k̄_n (A g_e x_e + C w), U = ½ k̄_n (A g_e² + wᵀ C w).
-inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& f, double kn, double R, double gap) {
+inline NormalLoad linear_normal(const DiscElement& g, const JointFrame& f, double kn, double R, double gap) {
     const double R2 = R * R, knR4 = kn * R2 * R2;
     const double cwy = g.cyy * f.wy + g.cyz * f.wz, cwz = g.cyz * f.wy + g.czz * f.wz;  // C w (unit disc)
     NormalLoad out;
@@ -253,7 +253,7 @@ inline NormalLoad linear_normal(const FlatElementGeometry& g, const JointFrame& 
 /// Unbonded element at centroid gap g_e = g_0 + δ_e: no tension, compressed part integrated
 /// (γ = g_0 + U_n, the gap at the disc centre [m]; the joint's zero line comes from `line`,
 /// made by the joint's first cut element and reused by the others).
-inline NormalLoad unbonded_normal(const FlatElementGeometry& g, const JointFrame& f, double kn, double R, double gap,
+inline NormalLoad unbonded_normal(const DiscElement& g, const JointFrame& f, double kn, double R, double gap,
                                   double gamma, ZeroLineCache& line) {
     const double spread = R * f.w_norm * g.reach;  // bounds |g(x) - g_e| over the element
     if (gap + spread <= 0.0) return linear_normal(g, f, kn, R, gap);
@@ -282,12 +282,10 @@ struct FlatJointLaw {
     static constexpr std::array<LawParameter<FlatJointParams>, 7> kParameters = {{
         {.key = "radial_elements", .description = "N_r, elements across the joint radius (flat_joint)",
          .field = law_field<&FlatJointParams::radial_elements>, .core_field = "FlatJointParams::radial_elements",
-         .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0,
-         .descriptive = true},
+         .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0},
         {.key = "angular_elements", .description = "N_alpha, elements around the joint (flat_joint)",
          .field = law_field<&FlatJointParams::angular_elements>, .core_field = "FlatJointParams::angular_elements",
-         .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0,
-         .descriptive = true},
+         .range = {1.0, 64.0, false, false}, .calibration = Calibration::fixed_only, .lower = 1.0, .upper = 64.0},
         {.key = "residual_friction", .description = "mu of a broken joint element (flat_joint)",
          .field = law_field<&FlatJointParams::residual_friction>, .core_field = "FlatJointParams::residual_friction",
          .range = ranges::non_negative, .calibration = Calibration::free, .lower = 0.2, .upper = 1.0},
@@ -338,17 +336,19 @@ struct FlatJointLaw {
     static double analytic_ductility(const FlatJointParams& f, double h) { return 0.5 * h * f.residual_friction; }
 
     struct Context {
-        std::span<const FlatElementGeometry> elements;  ///< the layout's table (built once per process)
+        std::span<const DiscElement> elements;  ///< the layout's table (built once per process)
         double tan_phi = 0.0, friction = 0.5;
         bool track = true;
     };
     /// The World's bond phase for flat joints: fully bonded joints vectorised across joints,
-    /// the others through step(); bitwise step()'s results (core/world_flat_joints.cpp).
+    /// the others through step(); bitwise step()'s results (core/flat_joint_pass.cpp).
     static BondPassEnergy compute_all(const BondPass& pass, double dt);
+    /// Whether compute_all takes an acting joint in its lanes: intact with every element bonded.
+    static bool on_vector_path(const ParallelBond& b) { return b.state == BondState::intact && b.interface == 0; }
 
     static Context context(const auto& p, bool track) {
         const FlatJointParams& own = law_params<FlatJointLaw>(p);
-        return {flat_joint_element_table(own.radial_elements, own.angular_elements),
+        return {disc_element_table(own.radial_elements, own.angular_elements),
                 std::tan(p.friction_angle_deg * kPi / 180.0), own.residual_friction, track};
     }
     static std::size_t side_size(const auto& p) {
@@ -392,7 +392,7 @@ struct FlatJointLaw {
         bool any_bonded = false, all_bonded = true, all_open = true;
         BondState last_mode = BondState::intact;
         for (std::size_t e = 0; e < c.elements.size(); ++e) {
-            const FlatElementGeometry& g = c.elements[e];
+            const DiscElement& g = c.elements[e];
             double* p = side + kFlatJointHeader + e * kFlatElementSize;
             const double old1 = p[1], old2 = p[2];
             ElementTrial t = element_trial(g, f, js, old1, old2);

@@ -3,7 +3,7 @@
 // constexpr rows over its parameter struct (Law::kParameters), and core/bond_models.hpp lists the
 // laws. From these rows come the core validator (BondParams::invalid_reason), the material table
 // (experiments/config/material_table.cpp: config keys, units, macro.json, calibration), the MPI wire
-// format (calibrate/execution/run_message.cpp) and the benchmark's descriptive columns. Config and IO paths
+// format (calibrate/execution/run_message.cpp) and the benchmark's JSON rows. Config and IO paths
 // only: nothing here runs per bond.
 #include <cmath>
 #include <cstdint>
@@ -143,7 +143,6 @@ struct LawParameter {
     ParameterRole role = ParameterRole::shape;  ///< a law's own parameters are dimensionless: shape
     double lower = 0.0, upper = 0.0;            ///< default calibration bounds, config units
     bool log_scale = false;                     ///< default calibration scale
-    bool descriptive = false;  ///< printed with the law's name where runs are listed (bench rows)
 };
 
 /// The parameters of a law that has none of its own (the parallel bond).

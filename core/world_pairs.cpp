@@ -17,7 +17,7 @@
 //     sum and a broken one +0 to the stored sum: both sums start at +0 and only add values
 //     >= 0, so these additions never changed a bit;
 //   - break events: per pair block in pair order, merged in block order = bond order.
-// Soft bonds and flat joints keep the two separate phases (world_step.cpp, world_bonds.cpp).
+// Laws whose bond replaces the contact keep the two separate phases (world_step.cpp, world_bonds.cpp).
 //
 // Vectorised across pairs: each block of pairs is cut into batches of kLanes; a scalar scan
 // copies the inputs of the pairs that need work into structure-of-arrays lanes (overlapping

@@ -112,7 +112,7 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
 }
 
 // Phase 2: linear contact law for every Verlet pair, one output slot each. A pair whose acting
-// bond replaces the contact (BondParams::replaces_contact; soft bond and flat joint) carries
+// bond replaces the contact (BondParams::replaces_contact) carries
 // nothing here: its bond is its only spring until it is released (the bond phase runs after this one,
 // so a bond broken this step lets the contact act from the next step on).
 void World::compute_contacts(double dt, double& strain, double& slip) {

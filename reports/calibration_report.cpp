@@ -224,7 +224,7 @@ std::string tension_unmet_statement(const CalibrationProblem& p, const TargetRow
         s << " vs lab " << fmt(r.lab.mean * 1e-6) << " MPa (" << pct(r.rel_error) << ")";
     if (p.bond_model() == BondModel::parallel_bond)
         s << " - a parallel-bond specimen's σc/σt stays near 2-4 whatever its strengths (Potyondy & Cundall 2004): a model-form "
-             "limit, which the flat joint's slit and gapped joints address";
+             "limit, which a law with unbonded (slit or gapped) interfaces addresses (docs/bond_laws.md)";
     return s.str();
 }
 

@@ -50,7 +50,8 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
     const std::vector<Case> cases = {
         {"lower >= upper", "", "[parameters.effective_modulus_gpa]\nlower = 50.0\nupper = 5.0\n", "must be < upper"},
         {"start outside bounds", "", "[parameters.tensile_strength_mpa]\nstart = 500.0\n", "is outside [lower, upper]"},
-        {"unknown solver", "", "[solver]\nmethod = \"newton\"\n", "unknown solver"},
+        {"unknown solver", "", "[solver]\nmethod = \"newton\"\n",
+         "key 'solver.method' = \"newton\": expected \"scaling\", \"bobyqa\", \"sbplx\", \"cobyla\", \"crs2\", \"direct\" or \"ceres\""},
         {"unknown parameter", "", "[parameters.youngs_modulus]\nfree = true\n", "unknown parameter 'youngs_modulus'"},
         {"unknown key", "", "[solver]\nmax_run = 3\n", "unknown key 'solver.max_run'"},
         {"unknown mode", "mode = \"both\"\n", "", "expected \"joint\", \"per_sand\" or \"study\""},

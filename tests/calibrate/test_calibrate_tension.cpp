@@ -199,7 +199,7 @@ TEST_CASE("bad tension targets are refused naming the key, line and rule", "[cal
         CHECK_THROWS_WITH(cal::load_calibration_problem(one_sand_problem(dir.path, *model, keys)),
                           Catch::Contains("problem.toml:") && Catch::Contains(what));
     };
-    refused("tension = \"splitting\"\n", "key 'targets.tension' = \"splitting\": expected one of none, lab, assumed_ratio");
+    refused("tension = \"splitting\"\n", "key 'targets.tension' = \"splitting\": expected \"none\", \"lab\" or \"assumed_ratio\"");
     refused("tension = \"assumed_ratio\"\ntension_ratio = 0.5\ntension_basis = \"x\"\n", "'targets.tension_ratio' = 0.5 violates > 1");
     refused("tension = \"assumed_ratio\"\ntension_ratio_low = 11.0\ntension_basis = \"x\"\n", "violate 1 < low <= ratio <= high");
     refused("tension = \"assumed_ratio\"\ntension_ratio_high = 9.0\ntension_basis = \"x\"\n", "tension_ratio_high");

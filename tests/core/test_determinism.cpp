@@ -104,7 +104,7 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
 #endif
 }
 
-// The vectorised pass over fully bonded flat joints (core/world_flat_joints.cpp) against the
+// The vectorised pass over fully bonded flat joints (core/flat_joint_pass.cpp) against the
 // law's scalar kernel for every joint: the same state bits, break count and every energy term,
 // on bonded-only and on mixed joints (slit, gapped, a friction angle), past the first breaks.
 TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[core][determinism]") {

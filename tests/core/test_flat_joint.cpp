@@ -88,10 +88,10 @@ TEST_CASE("flat joint in bending breaks element by element along the predicted m
     const double kn = rig.stiffness.normal, R = rig.section.radius;
     const Vec3 n{1, 0, 0};
     const Vec3 t1 = flat_joint_initial_axis(n), t2 = cross(n, t1);
-    const std::vector<FlatElementGeometry> geo = flat_joint_elements(2, 6);
+    const std::vector<DiscElement> geo = disc_elements(2, 6);
     struct Element { double area, d, c, theta_break; bool bonded = true; };
     std::vector<Element> el;
-    for (const FlatElementGeometry& g : geo) {
+    for (const DiscElement& g : geo) {
         const Vec3 x = (R * g.y) * t1 + (R * g.z) * t2;
         // Central second moment about y: ∫ (z - z_e)² over the element, from its (t1, t2) tensor.
         const double cy = t1.z, cz = t2.z;

@@ -66,7 +66,7 @@ struct Reference {
             w.push_back(2 / ((1 - t * t) * dp * dp));
         }
     }
-    std::array<LD, 4> rule(const FlatElementGeometry& e, LD g, LD wy, LD wz, LD lo_angle, LD hi_angle) const {
+    std::array<LD, 4> rule(const DiscElement& e, LD g, LD wy, LD wz, LD lo_angle, LD hi_angle) const {
         std::array<LD, 4> acc{};
         const LD mid = (lo_angle + hi_angle) / 2, half = (hi_angle - lo_angle) / 2, r0 = e.r0, r1 = e.r1;
         for (std::size_t q = 0; q < x.size(); ++q) {
@@ -85,7 +85,7 @@ struct Reference {
         }
         return acc;
     }
-    std::array<double, 4> operator()(const FlatElementGeometry& e, double gd, double wyd, double wzd) const {
+    std::array<double, 4> operator()(const DiscElement& e, double gd, double wyd, double wzd) const {
         const LD g = gd, wy = wyd, wz = wzd, pi = 3.141592653589793238462643383279502884L;
         std::vector<LD> cuts{e.a0, e.a1};
         const LD slope = std::sqrt(wy * wy + wz * wz), dir = std::atan2(wz, wy);
@@ -121,7 +121,7 @@ struct Reference {
 
 }  // namespace
 
-// The compressed part of one element (flat_joint_geometry.hpp: closed-form area moments of the
+// The compressed part of one element (disc_elements.hpp: closed-form area moments of the
 // region where the zero line leaves g < 0) against the reference quadrature, for lines anywhere,
 // lines nearly tangent to an arc (slivers) and lines through or near the disc centre. Measured:
 // relative error <= 1e-12 where the integral is at least 1e-3 of its scale, and <= 4e-15 of the
@@ -135,9 +135,9 @@ TEST_CASE("flat joint: an element's compressed part is the exact integral over t
     const std::pair<int, int> layouts[] = {{1, 1}, {1, 4}, {2, 6}, {3, 8}, {4, 5}};
     double worst_relative = 0.0, worst_scaled = 0.0;
     for (const auto& [nr, na] : layouts) {
-        const std::vector<FlatElementGeometry> elements = flat_joint_elements(nr, na);
+        const std::vector<DiscElement> elements = disc_elements(nr, na);
         for (int trial = 0; trial < 240; ++trial) {
-            const FlatElementGeometry& e = elements[static_cast<std::size_t>(trial) % elements.size()];
+            const DiscElement& e = elements[static_cast<std::size_t>(trial) % elements.size()];
             const double phi = (2.0 * uniform() - 1.0) * kPi, arc = uniform() < 0.5 ? e.r0 : e.r1;
             double gamma = 2.4 * uniform() - 1.2;  // anywhere
             if (trial % 3 == 1) gamma = (uniform() < 0.5 ? 1 : -1) * arc * (1 - std::pow(10.0, -1 - 8 * uniform()));

@@ -1,14 +1,15 @@
 #pragma once
-// Geometry of a flat joint's interface (docs/bond_laws.md, "Flat joint"): the bond disc of
-// radius R̄ split into N_r x N_α annular-sector elements, and the integrals of a linear normal
-// gap field over an element's compressed part.
+// A segmented contact disc: a disc of radius R̄ split into N_r x N_α annular-sector elements,
+// and the integrals of a linear normal gap field over an element's compressed part. The
+// geometry of an interface law whose disc is cut into elements (docs/bond_laws.md has the law
+// that uses it).
 //
 // Element e: r in [r0, r1] = [i, i+1]/N_r, α in [a0, a1] = 2π [j, j+1]/N_α of the unit disc,
-// measured in the joint's in-plane frame (t1, t2); index e = i N_α + j. Physical quantities
+// measured in the disc's in-plane frame (t1, t2); index e = i N_α + j. Physical quantities
 // scale with R̄: area A R̄², centroid x R̄, central second moments C R̄⁴.
 //
 // Gap field over the interface (tension/opening +): g(ξ) = γ + w.ξ [m], ξ in the unit disc
-// (x = R̄ ξ), γ the gap at the disc centre, w = R̄ n x θ_b. An unbonded element carries
+// (x = R̄ ξ), γ the gap at the disc centre, w = R̄ n x θ_b. An element without bond carries
 // σ(x) = k̄_n min(g, 0) (no tension), so over its compressed part Ω = {ξ in the element, g < 0}
 //     ∫ min(g,0) dA = γ M0 + w.M1,   ∫ min(g,0) ξ dA = γ M1 + M2 w,   ∫ min(g,0)² dA = γ F + w.P
 // with M0, M1, M2 the area moments of Ω of order 0, 1, 2 about the disc centre (F, P the first
@@ -20,9 +21,9 @@
 // sector's angle (detail::add_sector, add_triangle). No quadrature: exact to round-off.
 //
 // Speed: the zero line's direction (one atan2) and each arc's crossings (one acos, the crossing
-// points by angle addition, no sin/cos call) are computed once per joint and step
+// points by angle addition, no sin/cos call) are computed once per disc and step
 // (ZeroLineCache), the element's own edge directions are tabulated (cos0, sin0, cos1, sin1),
-// and the element table itself is built once per layout (flat_joint_element_table).
+// and the element table itself is built once per layout (disc_element_table).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -38,7 +39,7 @@
 namespace gradem {
 
 /// One element of the unit disc.
-struct FlatElementGeometry {
+struct DiscElement {
     double area = 0;                   ///< A_e
     double inv_area = 0;               ///< 1/A_e
     double y = 0, z = 0;               ///< centroid in (t1, t2)
@@ -56,7 +57,7 @@ namespace detail {
 
 /// Farthest point of the sector from its centroid: a corner, or the outer arc's point opposite
 /// the centroid direction when that lies in the sector (distance along an edge is convex).
-inline double sector_reach(const FlatElementGeometry& g, double a0, double a1) {
+inline double sector_reach(const DiscElement& g, double a0, double a1) {
     double reach = 0.0;
     for (double r : {g.r0, g.r1})
         for (double a : {a0, a1}) reach = std::max(reach, std::hypot(r * std::cos(a) - g.y, r * std::sin(a) - g.z));
@@ -67,11 +68,11 @@ inline double sector_reach(const FlatElementGeometry& g, double a0, double a1) {
 }
 
 /// Element (ir, ia) of N_r x N_α: area, centroid, central second moments (closed form), reach.
-inline FlatElementGeometry sector_element(std::int32_t nr, std::int32_t na, std::int32_t ir, std::int32_t ia) {
+inline DiscElement sector_element(std::int32_t nr, std::int32_t na, std::int32_t ir, std::int32_t ia) {
     const double da = 2.0 * kPi / na;
     const double r0 = static_cast<double>(ir) / nr, r1 = static_cast<double>(ir + 1) / nr;
     const double a0 = ia * da, a1 = (ia + 1) * da;
-    FlatElementGeometry g;
+    DiscElement g;
     g.r0 = r0;
     g.r1 = r1;
     g.ring = ir;
@@ -103,8 +104,8 @@ inline FlatElementGeometry sector_element(std::int32_t nr, std::int32_t na, std:
 }  // namespace detail
 
 /// The N_r x N_α elements of a unit disc, element index = i_r N_α + i_α.
-inline std::vector<FlatElementGeometry> flat_joint_elements(std::int32_t nr, std::int32_t na) {
-    std::vector<FlatElementGeometry> out;
+inline std::vector<DiscElement> disc_elements(std::int32_t nr, std::int32_t na) {
+    std::vector<DiscElement> out;
     for (std::int32_t ir = 0; ir < nr; ++ir)
         for (std::int32_t ia = 0; ia < na; ++ia) out.push_back(detail::sector_element(nr, na, ir, ia));
     return out;
@@ -113,17 +114,17 @@ inline std::vector<FlatElementGeometry> flat_joint_elements(std::int32_t nr, std
 /// The element table of layout N_r x N_α, built once per process and layout (thread-safe; the
 /// tables live until exit), so a law's per-step context allocates nothing. Equal layouts give
 /// the same span (same data pointer).
-inline std::span<const FlatElementGeometry> flat_joint_element_table(std::int32_t nr, std::int32_t na) {
+inline std::span<const DiscElement> disc_element_table(std::int32_t nr, std::int32_t na) {
     static std::mutex guard;
-    static std::map<std::pair<std::int32_t, std::int32_t>, std::unique_ptr<const std::vector<FlatElementGeometry>>>
+    static std::map<std::pair<std::int32_t, std::int32_t>, std::unique_ptr<const std::vector<DiscElement>>>
         tables;
     const std::lock_guard<std::mutex> lock(guard);
     auto& table = tables[{nr, na}];
-    if (!table) table = std::make_unique<const std::vector<FlatElementGeometry>>(flat_joint_elements(nr, na));
+    if (!table) table = std::make_unique<const std::vector<DiscElement>>(disc_elements(nr, na));
     return {table->data(), table->size()};
 }
 
-/// A joint's normal gap over the unit disc, g(ξ) = γ + w.ξ [m], and the direction of its
+/// A disc's normal gap over the unit disc, g(ξ) = γ + w.ξ [m], and the direction of its
 /// gradient, w = |w| (cos φ, sin φ).
 struct GapField {
     double gamma = 0, wy = 0, wz = 0;    ///< γ [m], w [m per unit of ξ]
@@ -177,8 +178,8 @@ inline ArcCrossing arc_crossing(const GapField& f, double r) {
     return a;
 }
 
-/// A joint's gap field and its arcs' crossings, made when an element first needs them and
-/// reused by the joint's other elements in this step (elements come ring by ring, so a ring's
+/// A disc's gap field and its arcs' crossings, made when an element first needs them and
+/// reused by the disc's other elements in this step (elements come ring by ring, so a ring's
 /// two arcs sit in two slots: arc i in slot i mod 2).
 struct ZeroLineCache {
     GapField field;
@@ -224,7 +225,7 @@ struct AngularCuts {
 };
 
 /// Adds arc `a`'s crossings that fall in (a0, a1), wrapped into [a0, a0 + 2π), at radius r.
-inline void add_kinks(AngularCuts& cuts, const FlatElementGeometry& g, const ArcCrossing& a, double r) {
+inline void add_kinks(AngularCuts& cuts, const DiscElement& g, const ArcCrossing& a, double r) {
     if (!a.cut) return;
     for (int k = 0; k < 2; ++k) {
         double angle = a.angle[k];
@@ -234,7 +235,7 @@ inline void add_kinks(AngularCuts& cuts, const FlatElementGeometry& g, const Arc
     }
 }
 
-inline AngularCuts angular_cuts(const FlatElementGeometry& g, const GapField& f, const ArcCrossing& inner,
+inline AngularCuts angular_cuts(const DiscElement& g, const GapField& f, const ArcCrossing& inner,
                                 const ArcCrossing& outer) {
     AngularCuts cuts;
     cuts.at[cuts.count++] = {g.a0, g.cos0, g.sin0, -f.gamma / (f.wy * g.cos0 + f.wz * g.sin0)};
@@ -289,7 +290,7 @@ inline void add_line_fan(AreaMoments& m, double sign, const PieceEnd& a, const P
 /// The piece between rays a and b: compressed on arc r where |α - φ| > β, tested at the
 /// piece's middle ray (no kink inside the piece, so the test holds on the whole piece); its
 /// region is fan(outer bound) - fan(inner bound).
-inline void add_piece(AreaMoments& m, const FlatElementGeometry& g, const GapField& f, const ArcCrossing& inner,
+inline void add_piece(AreaMoments& m, const DiscElement& g, const GapField& f, const ArcCrossing& inner,
                       const ArcCrossing& outer, const PieceEnd& a, const PieceEnd& b) {
     double d = 0.5 * (a.angle + b.angle) - f.phi;  // in [-π, 3π]
     if (d > kPi) d -= 2.0 * kPi;
@@ -310,8 +311,8 @@ inline void add_piece(AreaMoments& m, const FlatElementGeometry& g, const GapFie
 /// The compressed part of element g under the gap field f, given the crossings of its inner and
 /// outer arcs (arc_crossing at g.r0 and g.r1): the area moments of the compressed region in
 /// closed form, piece by piece, then F = γ M0 + w.M1, P = γ M1 + M2 w, U = γ F + w.P.
-/// Exact to round-off (tests/core/test_flat_joint_interface.cpp: the disc's hand integrals).
-inline CompressedPart compressed_part(const FlatElementGeometry& g, const GapField& f, const ArcCrossing& inner,
+/// Exact to round-off (the tests compare it with the disc's hand integrals).
+inline CompressedPart compressed_part(const DiscElement& g, const GapField& f, const ArcCrossing& inner,
                                       const ArcCrossing& outer) {
     const detail::AngularCuts cuts = detail::angular_cuts(g, f, inner, outer);
     detail::AreaMoments m;

@@ -97,7 +97,7 @@ __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
 }
 
 /// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
-__attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const FlatElementGeometry& g) {
+__attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const DiscElement& g) {
     using namespace flat_detail;
     const int count = L.count;
 #pragma GCC ivdep
@@ -167,7 +167,7 @@ __attribute__((always_inline)) inline void resultants(JointLanes& L) {
 #endif
 
 GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, double dt,
-                                                              std::span<const FlatElementGeometry> elements) {
+                                                              std::span<const DiscElement> elements) {
     frames(L, dt);
     for (std::size_t e = 0; e < elements.size(); ++e) bonded_element(L, e, elements[e]);
     resultants(L);
@@ -181,7 +181,7 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
         if (c.elements.data() == a.data()) continue;  // the same layout's table
         if (c.elements.size() != a.size()) return false;
         for (std::size_t e = 0; e < a.size(); ++e) {
-            const FlatElementGeometry &x = a[e], &y = c.elements[e];
+            const DiscElement &x = a[e], &y = c.elements[e];
             if (x.area != y.area || x.y != y.y || x.z != y.z || x.cyy != y.cyy || x.czz != y.czz || x.cyz != y.cyz)
                 return false;
         }
@@ -200,7 +200,7 @@ struct FlatJointPass {
     bool track;  ///< keep bond energies (sim.track_energy)
     std::vector<FlatJointLaw::Context> contexts;  ///< one per bond family pair
     bool use_lanes = false;
-    std::span<const FlatElementGeometry> elements;
+    std::span<const DiscElement> elements;
     std::vector<BondPassEnergy> partial;             ///< per bond block
     std::vector<std::vector<BreakEvent>> broken;     ///< per bond block, in bond order
 
@@ -243,7 +243,7 @@ struct FlatJointPass {
             const auto slot = static_cast<std::size_t>(k - b0);
             which[slot] = -1;
             const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
-            if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
+            if (!use_lanes || !FlatJointLaw::on_vector_path(b)) continue;
             const int l = count++;
             which[slot] = static_cast<std::int8_t>(l);
             load_joint(L, l, k, b);
