@@ -7,7 +7,9 @@
 //      θ costs one evaluation, and its objective is the one after the best closed-form rescaling
 //      (no extra runs);
 //   4. confirm: run the best θ with its rescaled E* and strengths; if E or peak still miss their
-//      prediction by more than the tolerance, rescale and run once more.
+//      prediction by more than half the tolerance, rescale and run once more. When the best θ is
+//      x1's own and x1's rescaling is already within half the tolerance, x1 is the result: a
+//      confirmation would run a point that differs from it by less than the test it applies.
 #include <algorithm>
 #include <cmath>
 #include <nlopt.hpp>
@@ -150,6 +152,13 @@ private:
     nlopt::opt* opt_ = nullptr;
 };
 
+/// Whether a run point's closed-form rescaling moves E* and the strengths by at most half the
+/// homogeneity tolerance: the point is then on target (the confirmation's test).
+bool on_target(const SolveContext& ctx, const Rescaling& r) {
+    const double half = ctx.problem.solver.homogeneity_tolerance / 2;
+    return std::fabs(r.scales.alpha - 1.0) <= half && std::fabs(r.scales.beta - 1.0) <= half;
+}
+
 /// Step 4: runs the best point; if E or peak still miss their prediction by more than half the
 /// homogeneity tolerance, rescales and runs once more.
 void confirm(SolveContext& ctx, const ScaleIndices& idx, BestTracker& tracker, std::vector<double> point) {
@@ -159,11 +168,15 @@ void confirm(SolveContext& ctx, const ScaleIndices& idx, BestTracker& tracker, s
         ctx.evaluator.note_best(tracker.objective());
         if (e.failed) break;
         const Rescaling r = rescale(ctx, idx, e);
-        const bool on_target = std::fabs(r.scales.alpha - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2 &&
-                               std::fabs(r.scales.beta - 1.0) <= ctx.problem.solver.homogeneity_tolerance / 2;
-        if (on_target) break;
+        if (on_target(ctx, r)) break;
         point = r.point;
     }
+}
+
+/// The line that says x1 is the result without a confirmation run.
+std::string x1_on_target_line(const Rescaling& r) {
+    return "the rescaled point is on target (its own rescaling: moduli x " + std::to_string(r.scales.alpha) +
+           ", strengths x " + std::to_string(r.scales.beta) + ", within half the homogeneity tolerance): it is the result";
 }
 
 }  // namespace
@@ -192,7 +205,8 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
                              e1.failed ? "the rescaled point failed (" + e1.failure + ")"
                                        : "homogeneity does not hold within " + percent(ctx.problem.solver.homogeneity_tolerance));
         // 3. Shape search at x1's scales.
-        ShapeSearch search(ctx, idx, tracker, e1, rescale(ctx, idx, e1), per_eval * (2 + static_cast<int>(idx.shape.size())));
+        const Rescaling r_e1 = rescale(ctx, idx, e1);
+        ShapeSearch search(ctx, idx, tracker, e1, r_e1, per_eval * (2 + static_cast<int>(idx.shape.size())));
         std::string stop = "no shape parameter is free";
         if (!idx.shape.empty()) {
             const int evals = (ctx.evaluator.runs_remaining() - per_eval * (2 + static_cast<int>(idx.shape.size()))) / per_eval;
@@ -204,8 +218,13 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
             }
         }
         if (ctx.log) ctx.log(stop + "; best predicted objective " + std::to_string(search.best_predicted()));
-        // 4. Confirmation runs.
-        confirm(ctx, idx, tracker, search.best_point());
+        // 4. Confirmation runs, unless x1 is still the best and already on target.
+        if (search.best_point() == r_e1.point && on_target(ctx, r_e1)) {
+            if (ctx.log) ctx.log(x1_on_target_line(r_e1));
+            head.notes.push_back(x1_on_target_line(r_e1));
+        } else {
+            confirm(ctx, idx, tracker, search.best_point());
+        }
         head.stop_reason = stop;
     } catch (const BudgetExhausted& e) {
         head.budget_exhausted = true;

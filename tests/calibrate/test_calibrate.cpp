@@ -98,6 +98,33 @@ TEST_CASE("twin experiment, analytic stand-in: the scaling path recovers known p
     for (const auto& row : report::summary_json(problem, r)["targets"]) CHECK(std::fabs(row["rel_error"].get<double>()) < 0.01);
 }
 
+TEST_CASE("scaling path with the shape fixed: a rescaled point already on target is the result, without a confirmation run",
+          "[calibrate]") {
+    TempDir dir("cal-twin-scaling-fixed-shape");
+    auto model = cal::make_analytic_model(2, 0.001);
+    // The shape at the truth, the scales started 30 % and 20 % off: the exactly homogeneous
+    // stand-in puts the rescaled point on the fit, whose own rescaling is then x 1.
+    const std::string shape_fixed = "[parameters.cohesion_ratio]\nfree = false\nstart = 1.6\n"
+                                    "[parameters.strength_cv]\nfree = false\nstart = 0.25\n"
+                                    "[parameters.effective_modulus_gpa]\nstart = 14.0\n"
+                                    "[parameters.tensile_strength_mpa]\nstart = 14.4\n";
+    const cal::CalibrationProblem problem =
+        cal::load_calibration_problem(twin_problem(dir.path, *model, "scaling", 400, shape_fixed));
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+    const cal::CalibrationStage& st = r.stages.at(0);
+    std::vector<std::string> labels;
+    for (const cal::Evaluation& e : r.history) labels.push_back(e.label);
+    INFO("runs " << r.runs_used);
+    CHECK(labels == std::vector<std::string>{"start", "rescaled"});
+    CHECK(r.runs_used == 2 * 2 * 3);  // two evaluations of 2 sands x 3 seeds
+    const std::vector<double> best = best_of(r);
+    CHECK(best[0] == Approx(kTruth[0]).epsilon(0.002));  // the stand-in's seed scatter: seeds 1-3 against the
+    CHECK(best[1] == Approx(kTruth[1]).epsilon(0.002));  // targets' 101-110
+    bool noted = false;
+    for (const std::string& n : st.solution.notes) noted = noted || n.find("the rescaled point is on target") != std::string::npos;
+    CHECK(noted);
+}
+
 TEST_CASE("twin experiment, analytic stand-in: Ceres LM recovers every parameter, BOBYQA closes in", "[calibrate]") {
     SECTION("ceres") {
         TempDir dir("cal-twin-ceres");
