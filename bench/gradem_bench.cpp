@@ -164,27 +164,6 @@ Options parse(int argc, char** argv) {
 
 using bench::peak_rss_bytes;
 
-/// Acting bonds at the end of a run, by the path their law's own pass takes them
-/// (Law::on_vector_path, core/bond_law.hpp): its SIMD lanes or its scalar kernel. Laws without
-/// such a pass count every acting bond as on the vector path (share 0, as they have no other).
-struct PathCounts {
-    std::int64_t vector = 0, scalar = 0;
-};
-
-PathCounts count_paths(const World& world) {
-    PathCounts c;
-    for (const ParallelBond& b : world.bonds()) {
-        if (!bond_acts(b)) continue;
-        const bool lanes = visit_bond_law(b.model, [&](auto kernel) {
-            using Law = decltype(kernel);
-            if constexpr (requires { Law::on_vector_path(b); }) return Law::on_vector_path(b);
-            else return true;
-        });
-        ++(lanes ? c.vector : c.scalar);
-    }
-    return c;
-}
-
 /// One row's set-up: the packing it runs on and the bonds.
 struct RowCase {
     const char* packing = "lattice";      ///< "lattice" (quick packing) or "genesis"
@@ -205,7 +184,6 @@ struct Sample {
     StepProfile profile;
     std::size_t world_bytes = 0, rss = 0;
     std::int64_t contacts = 0, pairs = 0;
-    PathCounts paths;
 };
 
 /// The material of a lattice row: contact and bond E* 10 GPa, k_n/k_s 1.5, μ 0.5, σ̄_c 8 MPa, c̄
@@ -276,11 +254,12 @@ Sample run_once(const RowCase& row, int threads, std::int64_t steps) {
     s.profile.walls = after.walls - before.walls;
     s.profile.integrate = after.integrate - before.integrate;
     s.profile.rebuilds = after.rebuilds - before.rebuilds;
+    s.profile.bond_lane_steps = after.bond_lane_steps - before.bond_lane_steps;
+    s.profile.bond_scalar_steps = after.bond_scalar_steps - before.bond_scalar_steps;
     s.world_bytes = world.memory_bytes();
     s.rss = peak_rss_bytes();
     s.pairs = static_cast<std::int64_t>(world.pair_count());
     s.contacts = static_cast<std::int64_t>(world.active_contact_count());
-    s.paths = count_paths(world);
     if (world.status() != RunStatus::running) bench::warn("gradem-bench", "run diverged: " + world.status_reason());
     return s;
 }
@@ -307,9 +286,9 @@ void print_law_rows(const BondParams& params) {
 void print_sample(const Sample& s, double speedup, bool json) {
     const double pss = static_cast<double>(s.n) * static_cast<double>(s.steps) / s.seconds;
     const double per = static_cast<double>(s.n);
-    const PathCounts& p = s.paths;
-    const double acting = static_cast<double>(p.vector + p.scalar);
-    const double scalar_share = acting > 0 ? static_cast<double>(p.scalar) / acting : 0.0;
+    // bond-steps of the timed steps by the path of the law's own pass (none: 0 and 0)
+    const std::int64_t lane = s.profile.bond_lane_steps, scalar = s.profile.bond_scalar_steps;
+    const double scalar_share = lane + scalar > 0 ? static_cast<double>(scalar) / static_cast<double>(lane + scalar) : 0.0;
     if (json) {
         std::printf("{\"model\": \"%s\", ", bond_model_name(s.bond_params.model));
         print_law_rows(s.bond_params);
@@ -320,14 +299,14 @@ void print_sample(const Sample& s, double speedup, bool json) {
                     "\"integrate_s\": %.4f, \"rebuilds\": %lld, \"bytes_per_particle\": %.1f, "
                     "\"peak_rss_bytes_per_particle\": %.1f, \"speedup_vs_1_thread\": %.3f, "
                     "\"packing\": \"%s\", \"bond_gap_um\": %.4g, "
-                    "\"bonds_vector_path\": %lld, \"bonds_scalar_path\": %lld, \"scalar_path_share\": %.4f}\n",
+                    "\"bond_steps_lanes\": %lld, \"bond_steps_scalar\": %lld, \"scalar_path_share\": %.4f}\n",
                     static_cast<long long>(s.n), static_cast<long long>(s.bonds),
                     static_cast<long long>(s.pairs), static_cast<long long>(s.contacts), s.threads,
                     static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                     s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
                     static_cast<long long>(s.profile.rebuilds), static_cast<double>(s.world_bytes) / per,
                     static_cast<double>(s.rss) / per, speedup, s.row.packing, s.gap_um,
-                    static_cast<long long>(p.vector), static_cast<long long>(p.scalar), scalar_share);
+                    static_cast<long long>(lane), static_cast<long long>(scalar), scalar_share);
         return;
     }
     char swept[32] = "-";

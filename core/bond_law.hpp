@@ -30,9 +30,6 @@
 //                                              them (core/law_parameters.hpp, calibrate/plan.cpp)
 //     compute_all(pass, dt) -> BondPassEnergy  the law's own pass over every bond, instead of
 //                                              the World's generic loop (core/bond_pass.hpp)
-//     on_vector_path(bond) -> bool             with compute_all: whether that pass takes this
-//                                              acting bond in its SIMD lanes (else its scalar
-//                                              kernel; gradem-bench reports the share)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -36,11 +36,16 @@ struct BondConstants {
 /// damage and by friction of broken elements.
 struct BondPassEnergy {
     double stored = 0, released = 0, damage = 0, slip = 0;
+    /// A law's own pass: the acting bonds it took in its SIMD lanes and through its scalar
+    /// kernel (StepProfile sums them; gradem-bench reports the share).
+    std::int64_t lane_bonds = 0, scalar_bonds = 0;
     BondPassEnergy& operator+=(const BondPassEnergy& o) {
         stored += o.stored;
         released += o.released;
         damage += o.damage;
         slip += o.slip;
+        lane_bonds += o.lane_bonds;
+        scalar_bonds += o.scalar_bonds;
         return *this;
     }
 };

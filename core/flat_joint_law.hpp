@@ -340,11 +340,10 @@ struct FlatJointLaw {
         double tan_phi = 0.0, friction = 0.5;
         bool track = true;
     };
-    /// The World's bond phase for flat joints: fully bonded joints vectorised across joints,
-    /// the others through step(); bitwise step()'s results (core/flat_joint_pass.cpp).
+    /// The World's bond phase for flat joints: vectorised across joints (those whose elements
+    /// all take the common path: none fails, none is cut by the zero line), the others through
+    /// step(); bitwise step()'s results (core/flat_joint_pass.cpp).
     static BondPassEnergy compute_all(const BondPass& pass, double dt);
-    /// Whether compute_all takes an acting joint in its lanes: intact with every element bonded.
-    static bool on_vector_path(const ParallelBond& b) { return b.state == BondState::intact && b.interface == 0; }
 
     static Context context(const auto& p, bool track) {
         const FlatJointParams& own = law_params<FlatJointLaw>(p);

@@ -85,7 +85,7 @@ struct SimParams {
     /// only: the results are bitwise the same either way (tests/core/test_pair_pass.cpp).
     std::size_t stream_prefetch_above_bytes = std::size_t{32} << 20;
     /// A law's own vectorised pass over its bonds (Law::compute_all, core/bond_pass.hpp: its
-    /// fully bonded bonds across SIMD lanes), bitwise the same results as its scalar kernel: off only to
+    /// bonds across SIMD lanes), bitwise the same results as its scalar kernel: off only to
     /// compare the two.
     bool vectorised_bond_passes = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;

@@ -100,6 +100,8 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
         profile_.contacts += clock.lap();
         bond = compute_bonds(increment_dt);
     }
+    profile_.bond_lane_steps += bond.lane_bonds;
+    profile_.bond_scalar_steps += bond.scalar_bonds;
     e.bond_strain = bond.stored;
     e.released = bond.released;
     e.damage = bond.damage;

@@ -51,6 +51,9 @@ struct BreakEvent {
 struct StepProfile {
     double neighbors = 0.0, contacts = 0.0, bonds = 0.0, walls = 0.0, integrate = 0.0;
     std::int64_t rebuilds = 0;
+    /// Bond-steps a law's own pass (Law::compute_all) took in its SIMD lanes and through its
+    /// scalar kernel; 0 for laws without one.
+    std::int64_t bond_lane_steps = 0, bond_scalar_steps = 0;
     [[nodiscard]] double total() const { return neighbors + contacts + bonds + walls + integrate; }
 };
 
