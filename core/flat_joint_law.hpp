@@ -340,9 +340,8 @@ struct FlatJointLaw {
         double tan_phi = 0.0, friction = 0.5;
         bool track = true;
     };
-    /// The World's bond phase for flat joints: vectorised across joints (those whose elements
-    /// all take the common path: none fails, none is cut by the zero line), the others through
-    /// step(); bitwise step()'s results (core/flat_joint_pass.cpp).
+    /// The World's bond phase for flat joints: fully bonded joints vectorised across joints,
+    /// the others through step(); bitwise step()'s results (core/flat_joint_pass.cpp).
     static BondPassEnergy compute_all(const BondPass& pass, double dt);
 
     static Context context(const auto& p, bool track) {

@@ -3,24 +3,17 @@
 // core/flat_joint_law.hpp has the law;
 // docs/bond_laws.md "Flat joint"). Most joints of a loaded specimen are fully bonded and do
 // not break in a given step; for those the law is a fixed sequence of arithmetic per element
-// with no branch. Partly bonded and unbonded joints (slit, gapped, broken) are too, as long as
-// each unbonded element is closed or open over its whole extent (no zero line across it: the
-// element's stress is then linear or nil). Each block of bonds is cut into batches of
-// kJointLanes:
-//   1. a scalar scan copies the inputs of the acting joints into structure-of-arrays lanes
-//      (particle state, the joint's header and element shear forces, its constants): fully
-//      bonded joints into one set of lanes, the others (with their elements' bonded flags)
-//      into a second;
-//   2. three loops over each set run the pair kinematics and the frame, then each element
+// with no branch. Each block of bonds is cut into batches of kJointLanes:
+//   1. a scalar scan copies the inputs of the fully bonded joints into structure-of-arrays
+//      lanes (particle state, the joint's header and element shear forces, its constants);
+//   2. three loops over the lanes run the pair kinematics and the frame, then each element
 //      (element loop outside, lanes inside: one vector operation serves kJointLanes joints),
 //      then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function
-//      multiversioning, picked at load time). The second set's element loop computes both
-//      branches of FlatJointLaw::step (bonded; unbonded with its Coulomb cap) and selects;
-//   3. a scalar pass in bond order writes back the lanes that took the law's common path, and
-//      runs every other acting joint (an element that fails this step, an unbonded element
-//      cut by the zero line, a separated joint to release: its lane result is discarded, its
-//      state is still the old one) through FlatJointLaw::step, exactly as the generic bond
-//      phase does.
+//      multiversioning, picked at load time);
+//   3. a scalar pass in bond order writes back the lanes whose elements all held, and runs
+//      every other acting joint (partly or wholly unbonded, or with an element that fails this
+//      step: its lane result is discarded, its state is still the old one) through
+//      FlatJointLaw::step, exactly as the generic bond phase does.
 // The lanes call the law's own helpers (advance_frame, joint_step, element_trial,
 // linear_normal, joint_resultant) in the law's order, and every lane does the same IEEE
 // operations as the scalar code (-ffp-contract=off: no FMA; no reassociation); energies are
@@ -51,19 +44,14 @@ struct JointLanes {
     double scale[kJointLanes], radius[kJointLanes], kn[kJointLanes], ks[kJointLanes];
     double strength[kJointLanes], cohesion[kJointLanes], tan_phi[kJointLanes];
     double shear[kMaxLaneElements][2][kJointLanes];  ///< F_s,e in (t1, t2): in, then out [N]
-    // inputs of joints not fully bonded: elements' bonded flags (1/0), g_0 [m], μ_r, the
-    // surface gap beyond which a separated joint is released [m]
-    double bonded[kMaxLaneElements][kJointLanes];
-    double gap0[kJointLanes], friction[kJointLanes], release_gap[kJointLanes];
     // the frame and step constants after this step's increments
     double t1[3][kJointLanes], t2[3][kJointLanes], n[3][kJointLanes], arm_b[3][kJointLanes];
-    double wy[kJointLanes], wz[kJointLanes], w_norm[kJointLanes], gap[kJointLanes], bend_total[3][kJointLanes];
+    double wy[kJointLanes], wz[kJointLanes], bend_total[3][kJointLanes];
     double jkn[kJointLanes], jks[kJointLanes], R2[kJointLanes], ksR4[kJointLanes], inv_ks_r2[kJointLanes];
     double du1[kJointLanes], du2[kJointLanes], dtwist[kJointLanes];
     // element sums and results
     double s1[kJointLanes], s2[kJointLanes], fn[kJointLanes], p1[kJointLanes], p2[kJointLanes];
     double tw[kJointLanes], stored[kJointLanes], fails[kJointLanes];
-    double slip[kJointLanes], any_bonded[kJointLanes], all_open[kJointLanes];  ///< joints not fully bonded
     double force[3][kJointLanes], torque[3][kJointLanes], shear_res[3][kJointLanes], bend_res[3][kJointLanes];
 };
 
@@ -95,8 +83,6 @@ __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
         L.normal[l] = f.normal;
         L.wy[l] = f.wy;
         L.wz[l] = f.wz;
-        L.w_norm[l] = f.w_norm;
-        L.gap[l] = kin.gap;
         L.jkn[l] = js.kn;
         L.jks[l] = js.ks;
         L.R2[l] = js.R2;
@@ -106,8 +92,7 @@ __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
         L.du2[l] = js.du2;
         L.dtwist[l] = js.dtwist;
         L.s1[l] = L.s2[l] = L.fn[l] = L.p1[l] = L.p2[l] = L.tw[l] = L.stored[l] = 0.0;
-        L.fails[l] = L.slip[l] = L.any_bonded[l] = 0.0;
-        L.all_open[l] = 1.0;
+        L.fails[l] = 0.0;
     }
 }
 
@@ -151,97 +136,6 @@ __attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::si
     }
 }
 
-/// The frame and step constants of lane l, as FlatJointLaw::step has them.
-__attribute__((always_inline)) inline void lane_frame(const JointLanes& L, int l, flat_detail::JointFrame& f,
-                                                      flat_detail::JointStep& js) {
-    f.wy = L.wy[l];
-    f.wz = L.wz[l];
-    f.w_norm = L.w_norm[l];
-    f.twist = L.twist[l];
-    f.normal = L.normal[l];
-    js.kn = L.jkn[l];
-    js.ks = L.jks[l];
-    js.R = L.radius[l];
-    js.R2 = L.R2[l];
-    js.ksR4 = L.ksR4[l];
-    js.inv_ks_r2 = L.inv_ks_r2[l];
-    js.du1 = L.du1[l];
-    js.du2 = L.du2[l];
-    js.dtwist = L.dtwist[l];
-}
-
-/// Loop 2 of a joint not fully bonded, for one element: FlatJointLaw::step's element, both
-/// branches computed and one selected per lane. Bonded: the linear stress and the failure
-/// test (a failure sends the joint to the scalar kernel). Unbonded (unbonded_normal,
-/// frictional_cap): closed over its whole extent, the linear stress at gap g_0 + δ_e; open, none;
-/// cut by the zero line, the scalar kernel; then the Coulomb cap |F_s| <= μ_r max(-F_n, 0) and
-/// its slip energy. Every selected value is the scalar kernel's, bit for bit.
-__attribute__((always_inline)) inline void mixed_element(JointLanes& L, std::size_t e, const DiscElement& g) {
-    using namespace flat_detail;
-    const int count = L.count;
-#pragma GCC ivdep
-    for (int l = 0; l < count; ++l) {
-        JointFrame f;
-        JointStep js;
-        lane_frame(L, l, f, js);
-        const double old1 = L.shear[e][0][l], old2 = L.shear[e][1][l];
-        const ElementTrial t = element_trial(g, f, js, old1, old2);
-        const bool bonded = L.bonded[e][l] != 0.0;
-        // bonded: linear stress, failure test
-        const NormalLoad held = linear_normal(g, f, js.kn, js.R, t.opening);
-        const double inv_a = g.inv_area / js.R2;
-        const bool fails = FlatJointLaw::element_fails(held.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
-                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
-        // unbonded: closed, open or cut
-        const double gap = L.gap0[l] + t.opening;
-        const double spread = js.R * f.w_norm * g.reach;
-        const bool closed = gap + spread <= 0.0;
-        const bool open = !closed && gap - spread >= 0.0;
-        const NormalLoad contact = linear_normal(g, f, js.kn, js.R, gap);
-        const double fn_u = closed ? contact.fn : 0.0;
-        const double limit = fn_u < 0.0 ? -L.friction[l] * fn_u : 0.0;
-        const double m2 = t.s1 * t.s1 + t.s2 * t.s2;
-        const bool capped = m2 > limit * limit;
-        const double cap = m2 > 0.0 ? limit / std::sqrt(m2) : 0.0;
-        const double c1 = cap * t.s1, c2 = cap * t.s2;
-        const double slip = -0.5 * ((old1 + c1) * t.du1 + (old2 + c2) * t.du2) -
-                            0.5 * (c1 * c1 + c2 * c2 - old1 * old1 - old2 * old2) * t.inv_ksa;
-        // the element's values
-        const double s1 = bonded || !capped ? t.s1 : c1;
-        const double s2 = bonded || !capped ? t.s2 : c2;
-        const double fn = bonded ? held.fn : fn_u;
-        const double p1 = bonded ? held.p1 : closed ? contact.p1 : 0.0;
-        const double p2 = bonded ? held.p2 : closed ? contact.p2 : 0.0;
-        const double normal_energy = bonded ? held.energy : closed ? contact.energy : 0.0;
-        const double twist_energy = bonded ? 0.5 * js.ksR4 * g.polar * f.twist * f.twist : 0.0;
-        const double twist_moment = bonded ? js.ksR4 * g.polar * f.twist : 0.0;
-        L.fails[l] = (bonded ? fails : !closed && !open) ? 1.0 : L.fails[l];
-        L.slip[l] += !bonded && capped ? slip : 0.0;
-        L.any_bonded[l] = bonded ? 1.0 : L.any_bonded[l];
-        L.all_open[l] = !bonded && open ? L.all_open[l] : 0.0;
-        L.stored[l] += normal_energy + 0.5 * (s1 * s1 + s2 * s2) * t.inv_ksa + twist_energy;
-        L.shear[e][0][l] = s1;
-        L.shear[e][1][l] = s2;
-        L.s1[l] += s1;
-        L.s2[l] += s2;
-        L.fn[l] += fn;
-        L.p1[l] += p1;
-        L.p2[l] += p2;
-        L.tw[l] += t.xy * s2 - t.xz * s1 - twist_moment;
-    }
-}
-
-/// A joint not fully bonded whose elements are all unbonded and open and whose surfaces are
-/// farther apart than its release gap is released by the scalar kernel.
-__attribute__((always_inline)) inline void mark_releases(JointLanes& L) {
-    const int count = L.count;
-#pragma GCC ivdep
-    for (int l = 0; l < count; ++l) {
-        const bool releases = L.any_bonded[l] == 0.0 && L.all_open[l] != 0.0 && L.gap[l] > L.release_gap[l];
-        L.fails[l] = releases ? 1.0 : L.fails[l];
-    }
-}
-
 /// Loop 3: the resultant on B, and its torque about B's centre.
 __attribute__((always_inline)) inline void resultants(JointLanes& L) {
     using namespace flat_detail;
@@ -279,14 +173,6 @@ GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, dou
     resultants(L);
 }
 
-GRADEM_JOINT_CLONES __attribute__((flatten)) void mixed_joint_lanes(JointLanes& L, double dt,
-                                                                    std::span<const DiscElement> elements) {
-    frames(L, dt);
-    for (std::size_t e = 0; e < elements.size(); ++e) mixed_element(L, e, elements[e]);
-    mark_releases(L);
-    resultants(L);
-}
-
 /// Whether every family's element table is the same (the lanes share one geometry).
 bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     const auto& a = contexts.front().elements;
@@ -303,10 +189,9 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     return true;
 }
 
-/// FlatJointLaw::compute_all as a list of steps per batch of kJointLanes bonds: scan (the acting
-/// joints into the fully bonded lanes and the others'), the lane arithmetic, then in bond order
-/// the lanes that took the common path and every other acting joint through the law's scalar
-/// kernel.
+/// FlatJointLaw::compute_all as a list of steps per batch of kJointLanes bonds: scan (the
+/// fully bonded joints into lanes), the lane arithmetic, then in bond order the lanes that held
+/// and every other acting joint through the law's scalar kernel.
 struct FlatJointPass {
     const BondPass& pass;
     double dt;
@@ -332,22 +217,17 @@ struct FlatJointPass {
     void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BondPassEnergy e;
         std::vector<BondBreak> breaks;
-        // no zero-fill of 2 x 22 kB per block: the fully bonded joints' lanes, and the others'
-        auto lanes = std::make_unique_for_overwrite<JointLanes[]>(2);
-        JointLanes& L = lanes[0];
-        JointLanes& M = lanes[1];
-        std::int8_t which[kJointLanes];  // per bond of the batch: its lane in L, kJointLanes + its lane in M, -1 scalar
+        auto lanes = std::make_unique_for_overwrite<JointLanes>();  // no zero-fill of 20 kB per block
+        JointLanes& L = *lanes;
+        std::int8_t which[kJointLanes];  // per bond of the batch: its lane, -1 scalar or not acting
         for (std::int64_t b0 = begin; b0 < end; b0 += kJointLanes) {
             const std::int64_t b1 = std::min(end, b0 + kJointLanes);
-            scan(b0, b1, end, L, M, which);
+            scan(b0, b1, end, L, which);
             if (L.count > 0) joint_lanes(L, dt, elements);
-            if (M.count > 0) mixed_joint_lanes(M, dt, elements);
             for (std::int64_t k = b0; k < b1; ++k) {
-                const int w = which[static_cast<std::size_t>(k - b0)];
-                const JointLanes& set = w < kJointLanes ? L : M;
-                const int l = w < kJointLanes ? w : w - kJointLanes;
-                if (w >= 0 && set.fails[l] == 0.0) {
-                    store_lane(k, set, l, e);
+                const int l = which[static_cast<std::size_t>(k - b0)];
+                if (l >= 0 && L.fails[l] == 0.0) {
+                    store_lane(k, L, l, e);
                     ++e.lane_bonds;
                 } else if (bond_acts(pass.bonds[static_cast<std::size_t>(k)])) {
                     scalar_joint(k, blk, breaks, e);
@@ -358,27 +238,22 @@ struct FlatJointPass {
         partial[static_cast<std::size_t>(blk)] = e;
     }
 
-    /// 1. The acting joints of [b0, b1) into lanes: the fully bonded ones (intact and
-    ///    interface 0; kPartlyBonded: some element unbonded) into L, the others into M with
-    ///    their elements' flags; `which` gets each bond's lane (kJointLanes + lane for M) or -1.
+    /// 1. The fully bonded joints of [b0, b1) into lanes: intact and interface 0
+    ///    (kPartlyBonded: some element unbonded); `which` gets each bond's lane or -1.
     __attribute__((always_inline)) inline void scan(std::int64_t b0, std::int64_t b1, std::int64_t end, JointLanes& L,
-                                                    JointLanes& M, std::int8_t* which) const {
-        L.count = M.count = 0;
+                                                    std::int8_t* which) const {
+        int count = 0;
         for (std::int64_t k = b0; k < b1; ++k) {
             prefetch_ahead(k, end);
             const auto slot = static_cast<std::size_t>(k - b0);
             which[slot] = -1;
             const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
-            if (!use_lanes || !bond_acts(b)) continue;
-            if (b.state == BondState::intact && b.interface == 0) {
-                which[slot] = static_cast<std::int8_t>(L.count);
-                load_joint(L, L.count++, k, b);
-            } else {
-                which[slot] = static_cast<std::int8_t>(kJointLanes + M.count);
-                load_joint(M, M.count, k, b);
-                load_interface(M, M.count++, k, b);
-            }
+            if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
+            const int l = count++;
+            which[slot] = static_cast<std::int8_t>(l);
+            load_joint(L, l, k, b);
         }
+        L.count = count;
     }
 
     /// Prefetches for bond k: particle j of a bond a few bonds ahead (a random access), and that
@@ -430,18 +305,7 @@ struct FlatJointPass {
         L.tan_phi[l] = contexts[b.family_pair].tan_phi;
     }
 
-    /// Lane l of a joint not fully bonded: its elements' bonded flags, g_0, μ_r, release gap.
-    __attribute__((always_inline)) inline void load_interface(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
-        using namespace flat_side;
-        const double* side = side_data + static_cast<std::size_t>(k) * stride;
-        for (std::size_t el = 0; el < elements.size(); ++el) L.bonded[el][l] = side[kFlatJointHeader + el * kFlatElementSize];
-        L.gap0[l] = side[initial_gap];
-        L.release_gap[l] = side[release_gap];
-        L.friction[l] = contexts[b.family_pair].friction;
-    }
-
-    /// A joint whose lane took the law's common path (no element failed or was cut, nothing
-    /// released): the lane's results become its state.
+    /// A fully bonded joint whose elements all held: the lane's results become its state.
     __attribute__((always_inline)) inline void store_lane(std::int64_t k, const JointLanes& L, int l, BondPassEnergy& e) const {
         using namespace flat_side;
         ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
@@ -462,7 +326,6 @@ struct FlatJointPass {
         b.bend_moment = lane(L.bend_res, l);
         BondStepResult r;
         r.stored = track ? L.stored[l] : 0.0;
-        r.slip = track ? L.slip[l] : 0.0;
         e.stored += r.stored;  // every sum as the scalar path adds it (+0 adds change no bit)
         e.released += r.released;
         e.damage += r.damage;

@@ -7,9 +7,10 @@
 //      θ costs one evaluation, and its objective is the one after the best closed-form rescaling
 //      (no extra runs);
 //   4. confirm: run the best θ with its rescaled E* and strengths; if E or peak still miss their
-//      prediction by more than half the tolerance, rescale and run once more. When the best θ is
-//      x1's own and x1's rescaling is already within half the tolerance, x1 is the result: a
-//      confirmation would run a point that differs from it by less than the test it applies.
+//      prediction by more than half the tolerance, rescale and run once more. With no shape
+//      parameter free, when x1's own rescaling is already within half the tolerance, x1 is the
+//      result: a confirmation would run a point that differs from it by less than the test it
+//      applies. (With a shape search, the best θ is confirmed: on a DEM model it is seldom x1.)
 #include <algorithm>
 #include <cmath>
 #include <nlopt.hpp>
@@ -218,8 +219,8 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
             }
         }
         if (ctx.log) ctx.log(stop + "; best predicted objective " + std::to_string(search.best_predicted()));
-        // 4. Confirmation runs, unless x1 is still the best and already on target.
-        if (search.best_point() == r_e1.point && on_target(ctx, r_e1)) {
+        // 4. Confirmation runs, unless there was no shape to search and x1 is already on target.
+        if (idx.shape.empty() && on_target(ctx, r_e1)) {
             if (ctx.log) ctx.log(x1_on_target_line(r_e1));
             head.notes.push_back(x1_on_target_line(r_e1));
         } else {
