@@ -1,7 +1,8 @@
 #pragma once
-// The code version: the project version and the git commit at configure time
-// ("0.1.0+abc123def456"; "+unknown" outside a git checkout). The ledger stores it with every
-// run; the MPI executor refuses ranks that run another.
+// The code version: the project version and the git commit HEAD was at when the build was
+// last configured, CMake configuring again when HEAD moves ("0.1.0+abc123def456"; "+unknown"
+// outside a git checkout). The ledger stores it with every run; the MPI executor refuses ranks
+// that run another.
 
 namespace gradem::cal {
 
