@@ -406,12 +406,15 @@ TEST_CASE("a worker rank that stops answering is given up after timeout + grace:
           "[calibrate][mpi]") {
     TempDir dir("cal-mpi-hang");
     const fs::path cfg = analytic_problem(dir.path, 40, "[run]\ntimeout_s = 3\n");
-    // 180 s: Open MPI's teardown of a job with a hung rank has taken over a minute on a 2-core
-    // machine; a job that never ends still fails here.
-    const Finished f = run(mpirun(3, {GRADEM_MPI_DRIVER, cfg.string(), "--hang-rank", "2", "--hang-after", "3"}), dir.path, 180);
+    // Rank 0 gives the hung rank up and ends the job without MPI_Finalize; what mpiexec then does
+    // with the rank it must kill is Open MPI's: its teardown has taken from seconds to over three
+    // minutes on a loaded 2-core machine. So the job passes if it ended, or if rank 0 had said it
+    // ends the job when the limit came (the test then kills it); one that never got that far fails.
+    const Finished f = run(mpirun(3, {GRADEM_MPI_DRIVER, cfg.string(), "--hang-rank", "2", "--hang-after", "3"}), dir.path, 120);
     INFO(f.output);
-    CHECK_FALSE(f.timed_out);
-    CHECK(f.exit_code != 0);  // a lost rank cannot finalize: rank 0 exits without it...
+    const bool rank0_ended = f.output.find("ending the job without MPI_Finalize") != std::string::npos;
+    CHECK((!f.timed_out || rank0_ended));
+    CHECK((f.timed_out || f.exit_code != 0));  // a lost rank cannot finalize: rank 0 exits without it...
     CHECK_THAT(f.output, Contains("did not answer"));
     CHECK(fs::exists(dir.path / "out" / "summary.json"));  // ...after rank 0 wrote its outputs
     int lost = 0, by_rank_1 = 0;
