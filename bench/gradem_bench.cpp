@@ -189,27 +189,20 @@ struct Sample {
 /// The material of a lattice row: contact and bond E* 10 GPa, k_n/k_s 1.5, μ 0.5, σ̄_c 8 MPa, c̄
 /// 16 MPa (cv 0.2), every law's other parameters at their defaults; then the case's settings.
 exp::MaterialParams lattice_material(const bench::BondCase& c) {
-    exp::MaterialParams m;
-    m.contact.effective_modulus = 10.0e9;
-    m.contact.stiffness_ratio = 1.5;
-    m.contact.friction = 0.5;
-    m.bond.model = c.model;
-    m.bond.effective_modulus = 10.0e9;
-    m.bond.tensile_strength_mean = 8.0e6;
-    m.bond.tensile_strength_std = 1.6e6;
-    m.bond.cohesion_mean = 16.0e6;
-    m.bond.cohesion_std = 3.2e6;
-    for (const auto& [key, value] : c.settings) bench::apply_material_value(m, key, value);
+    const exp::MaterialParams m = bench::bench_material(c.model, 10.0e9, 8.0e6, 16.0e6, 0.0, c.settings);
     if (auto why = m.bond.invalid_reason()) throw bench::UsageError(*why);
     return m;
 }
 
-// A bonded lattice packing between platens closing at a strain rate of 1/s (typical test speed),
-// bonded across the packing's own gap unless bond_gap_um is set.
-World make_world(const exp::QuickPacking& packing, const bench::BondCase& c = {}) {
-    const exp::MaterialParams m = lattice_material(c);
+/// The bonding gap of a lattice row [m]: the material's if bond_gap_um is set, else the packing's.
+double lattice_gap(const exp::QuickPacking& packing, const exp::MaterialParams& m) {
+    return m.bond_gap_absolute > 0.0 ? m.bond_gap_absolute : packing.bond_gap;
+}
+
+// A bonded lattice packing between platens closing at a strain rate of 1/s (typical test speed).
+World make_world(const exp::QuickPacking& packing, const exp::MaterialParams& m) {
     World world(packing.particles, m.contact, SimParams{});
-    world.install_bonds(m.bond, m.bond_gap_absolute > 0.0 ? m.bond_gap_absolute : packing.bond_gap);
+    world.install_bonds(m.bond, lattice_gap(packing, m));
     exp::add_platens(world, 0.5);
     const double height = world.walls()[1].point.z - world.walls()[0].point.z;
     world.wall(0).velocity = {0, 0, 0.5 * height};
@@ -219,12 +212,13 @@ World make_world(const exp::QuickPacking& packing, const bench::BondCase& c = {}
 
 World make_row_world(const RowCase& row, double& gap_um) {
     if (row.specimen) {
-        gap_um = 1e6 * bench::specimen_material(row.bond).bond_gap_absolute;
-        return bench::specimen_world(*row.specimen, row.bond);
+        const exp::MaterialParams m = bench::specimen_material(row.bond);
+        gap_um = 1e6 * m.bond_gap_absolute;
+        return bench::specimen_world(*row.specimen, m);
     }
-    const double gap = lattice_material(row.bond).bond_gap_absolute;
-    gap_um = 1e6 * (gap > 0.0 ? gap : row.lattice->bond_gap);
-    return make_world(*row.lattice, row.bond);
+    const exp::MaterialParams m = lattice_material(row.bond);
+    gap_um = 1e6 * lattice_gap(*row.lattice, m);
+    return make_world(*row.lattice, m);
 }
 
 Sample run_once(const RowCase& row, int threads, std::int64_t steps) {
@@ -391,7 +385,7 @@ TimedRun time_bonded_run(const exp::QuickPacking& packing, int threads, std::int
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #endif
-    World world = make_world(packing);  // the time step of the same set-up (cheap next to the run)
+    World world = make_world(packing, lattice_material({}));  // the time step of the same set-up (cheap next to the run)
     return {s.seconds, world.time_step(), s.n, s.bonds, s.rss, s.world_bytes};
 }
 

@@ -7,6 +7,7 @@
 // `<model>:bond_gap_um=20` applies to that model's rows only.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/bench_args.hpp"
@@ -63,6 +64,28 @@ inline void apply_material_value(exp::MaterialParams& m, const std::string& key,
         throw UsageError("material key '" + key + "' belongs to " + exp::model_names(p.models));
     if (p.integer) p.set_int(m, static_cast<std::int64_t>(value));
     else exp::apply_calibration_value(p, m, value);
+}
+
+/// A bench row's material: contact and bond E* `modulus` [Pa], k_n/k_s 1.5, μ 0.5, σ̄_c
+/// `tensile_strength` and c̄ `cohesion` [Pa] with cv 0.2, bonding gap `gap` [m] (0: the
+/// packing's own), every law's other parameters at their defaults; then `settings` (config
+/// units, as --set gives them). The caller checks it.
+inline exp::MaterialParams bench_material(BondModel model, double modulus, double tensile_strength, double cohesion,
+                                          double gap, const std::vector<std::pair<std::string, double>>& settings) {
+    exp::MaterialParams m;
+    m.contact.effective_modulus = modulus;
+    m.contact.stiffness_ratio = 1.5;
+    m.contact.friction = 0.5;
+    m.bond.model = model;
+    m.bond.effective_modulus = modulus;
+    m.bond.stiffness_ratio = 1.5;
+    m.bond.tensile_strength_mean = tensile_strength;
+    m.bond.tensile_strength_std = 0.2 * tensile_strength;
+    m.bond.cohesion_mean = cohesion;
+    m.bond.cohesion_std = 0.2 * cohesion;
+    m.bond_gap_absolute = gap;
+    for (const auto& [key, value] : settings) apply_material_value(m, key, value);
+    return m;
 }
 
 }  // namespace gradem::bench

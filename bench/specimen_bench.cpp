@@ -39,25 +39,13 @@ exp::Packing specimen_packing(std::int64_t grains, const std::filesystem::path& 
 }
 
 exp::MaterialParams specimen_material(const BondCase& c) {
-    exp::MaterialParams m;
-    m.contact.effective_modulus = 11.0e9;
-    m.contact.stiffness_ratio = 1.5;
-    m.contact.friction = 0.5;
-    m.bond.model = c.model;
-    m.bond.effective_modulus = 11.0e9;
-    m.bond.stiffness_ratio = 1.5;
-    m.bond.tensile_strength_mean = 17.0e6;
-    m.bond.tensile_strength_std = 0.2 * 17.0e6;
-    m.bond.cohesion_mean = 8.5e6;
-    m.bond.cohesion_std = 0.2 * 8.5e6;
-    m.bond_gap_absolute = 1e-6 * kSpecimenGapUm;
-    for (const auto& [key, value] : c.settings) apply_material_value(m, key, value);
+    const exp::MaterialParams m = bench_material(c.model, 11.0e9, 17.0e6, 8.5e6, 1e-6 * kSpecimenGapUm, c.settings);
     if (auto why = m.invalid_reason()) throw UsageError(*why);
     return m;
 }
 
-World specimen_world(const exp::Packing& packing, const BondCase& c) {
-    World world = exp::bonded_cube_specimen(packing, specimen_material(c));
+World specimen_world(const exp::Packing& packing, const exp::MaterialParams& m) {
+    World world = exp::bonded_cube_specimen(packing, m);
     const double height = world.walls()[1].point.z - world.walls()[0].point.z;
     world.wall(0).velocity = {0, 0, 0.5 * height};  // strain rate 1/s, as the lattice rows
     world.wall(1).velocity = {0, 0, -0.5 * height};

@@ -40,7 +40,8 @@ exp::Packing specimen_packing(std::int64_t grains, const std::filesystem::path& 
 /// UsageError naming the rule.
 exp::MaterialParams specimen_material(const BondCase& c);
 
-/// The packing bonded as a cube test does, between the platens, closing at a strain rate of 1/s.
-World specimen_world(const exp::Packing& packing, const BondCase& c);
+/// The packing bonded as a cube test does with material `m`, between the platens, closing at a
+/// strain rate of 1/s.
+World specimen_world(const exp::Packing& packing, const exp::MaterialParams& m);
 
 }  // namespace gradem::bench

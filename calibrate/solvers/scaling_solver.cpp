@@ -221,8 +221,8 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
         if (ctx.log) ctx.log(stop + "; best predicted objective " + std::to_string(search.best_predicted()));
         // 4. Confirmation runs, unless there was no shape to search and x1 is already on target.
         if (idx.shape.empty() && on_target(ctx, r_e1)) {
-            if (ctx.log) ctx.log(x1_on_target_line(r_e1));
             head.notes.push_back(x1_on_target_line(r_e1));
+            if (ctx.log) ctx.log(head.notes.back());
         } else {
             confirm(ctx, idx, tracker, search.best_point());
         }
