@@ -119,15 +119,6 @@ double loading_steps(double end_strain, double ramp_strain, double rate, double 
     return (end_strain + 0.5 * std::min(ramp_strain, end_strain)) / (rate * dt);
 }
 
-/// The law's PlatenTestCost row, if it has one.
-std::optional<PlatenTestCost> platen_test_cost(BondModel model) {
-    return visit_bond_law(model, [](auto kernel) -> std::optional<PlatenTestCost> {
-        using Law = decltype(kernel);
-        if constexpr (requires { Law::kPlatenTestCost; }) return Law::kPlatenTestCost;
-        else return std::nullopt;
-    });
-}
-
 /// The platen strains at which a compression run of this sand is expected to peak and to end
 /// when it stops at `stop_fraction` of its peak (plan.hpp, step 4).
 struct CompressionStrains {
@@ -216,7 +207,7 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
         const exp::TensionConfig tension = exp::load_tension_config(config);
         const double expected = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain : exp::expected_tensile_peak_strain(material);
         const double t_rate = exp::tension_strain_rate(config, tension, *timed);
-        cost.tension_steps = probe.settle_steps + loading_steps(kTensionEndOverExpected * expected, l.ramp_strain, t_rate, probe.time_step);
+        cost.tension_steps = probe.settle_steps + loading_steps(factors.tension_end_over_expected * expected, l.ramp_strain, t_rate, probe.time_step);
         cost.tension_runs = counts.tension;
     }
     return cost;

@@ -13,7 +13,7 @@
 //      the time step. Compression ends at the law's PlatenTestCost::compression_end_over_elastic
 //      × σ_lab/E_lab (core/law_parameters.hpp), or, for a law without that row, at
 //      kEndOverPeakStrain × the lab's strain at peak; direct tension at
-//      kTensionEndOverExpected × its expected peak strain;
+//      the law's PlatenTestCost::tension_end_over_expected × its expected peak strain;
 //   5. wall time: Σ particle-steps × seconds per particle-step over min(workers, cores).
 #include <cstdint>
 #include <string>
@@ -30,9 +30,6 @@ namespace gradem::cal {
 /// gauge's before the peak, and the test runs on past it. Measured on parallel-bond
 /// calibrations of 2.5 mm cubes (docs/calibration.md).
 inline constexpr double kEndOverPeakStrain = 1.45;
-/// End of a direct-tension run over its expected peak strain (experiments/config/tension_config.hpp:
-/// the measured peak is 0.62 σ̄c/Ē where the rate assumes 0.5 σ̄c/Ē, and the test runs on past it).
-inline constexpr double kTensionEndOverExpected = 1.6;
 
 /// One packing a calibration needs.
 struct SpecimenPlan {

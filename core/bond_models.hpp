@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -97,6 +98,15 @@ decltype(auto) visit_bond_law(BondModel model, Visitor&& visitor) {
     switch (model) { GRADEM_BOND_LAWS(GRADEM_BOND_LAW_CASE) }
 #undef GRADEM_BOND_LAW_CASE
     throw std::invalid_argument("visit_bond_law: unknown BondModel " + std::to_string(static_cast<int>(model)));
+}
+
+/// The law's PlatenTestCost row (core/law_parameters.hpp), if it states one.
+inline std::optional<PlatenTestCost> platen_test_cost(BondModel model) {
+    return visit_bond_law(model, [](auto kernel) -> std::optional<PlatenTestCost> {
+        using Law = decltype(kernel);
+        if constexpr (requires { Law::kPlatenTestCost; }) return Law::kPlatenTestCost;
+        else return std::nullopt;
+    });
 }
 
 /// Calls visitor(Law{}) for every law, in BondModel order (config and IO paths).

@@ -63,6 +63,14 @@ struct PlatenTestCost {
     double pre_peak_cost_factor = 1.0;
     double post_peak_cost_factor = 1.0;
     double tension_cost_factor = 1.0;  ///< a direct-tension test's, over its whole run [-]
+    /// Platen strain at the direct-tension peak over σ̄_c/Ē, the bonds' mean tensile strength
+    /// over their modulus [-]: the low end of what the law's specimens reach, so that the
+    /// automatic tension rate, aimed at it, keeps the rule's wave transits before every
+    /// specimen's peak (experiments/config/tension_config.hpp). A law without a row: 0.5.
+    double tension_peak_over_bond_strain = 0.5;
+    /// Platen strain at which a direct-tension test at that rate ends over the expected peak
+    /// strain above [-] (the measured peak lies beyond the expected, and the test runs on past it).
+    double tension_end_over_expected = 1.6;
 };
 
 /// Typed access to one field of a law's parameter struct P, as a double (every row) and as an

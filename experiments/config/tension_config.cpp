@@ -7,6 +7,7 @@
 
 #include "common/input_error.hpp"
 #include "common/toml_section.hpp"
+#include "core/bond_models.hpp"
 
 namespace gradem::exp {
 namespace {
@@ -63,8 +64,9 @@ TensionConfig read_tension_config(common::toml_io::Context& ctx, const toml::tab
 }  // namespace
 
 double expected_tensile_peak_strain(const MaterialParams& material) {
-    const double strain = kTensilePeakStrainPerBondStrain * material.bond.tensile_strength_mean /
-                          material.bond.effective_modulus;
+    const PlatenTestCost row = platen_test_cost(material.bond.model).value_or(PlatenTestCost{});
+    const double strain =
+        row.tension_peak_over_bond_strain * material.bond.tensile_strength_mean / material.bond.effective_modulus;
     return std::clamp(strain, 1.0e-5, 1.0e-2);
 }
 

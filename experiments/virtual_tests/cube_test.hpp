@@ -25,6 +25,9 @@
 
 namespace gradem::exp {
 
+/// Where the loading branch of the platen-imbalance check ends, as a fraction of the peak [-].
+inline constexpr double kImbalanceBranchEnd = 0.95;
+
 struct CubeTestSpec {
     PlatenTestSpec loading;                 ///< rate, ramp, stop rule, output interval
     double gauge_length_fraction = 0.5;     ///< extensometer gauge length / cube height [-]
@@ -32,7 +35,7 @@ struct CubeTestSpec {
     double core_fraction = 0.6;             ///< gauge slabs use the central part of this width [-]
     double settle_ratio = 1.0e-4;           ///< unbalanced-force ratio before loading [-]
     std::int64_t max_settle_steps = 20000;  ///< settling budget (a warning if exceeded)
-    double imbalance_warning = 0.02;        ///< warn if pre-peak platen forces differ more [-]
+    double imbalance_warning = 0.02;        ///< warn if the loading branch's platen forces differ more [-]
     SnapshotCallback snapshot;              ///< optional: called at every recorded point (ParaView)
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
@@ -46,7 +49,9 @@ struct CubeTestResult {
     /// (sand-sand, sand-paste (ITZ), paste-paste); all 0 for a parallel-bond specimen.
     std::size_t bonds_sand_sand = 0, bonds_itz = 0, bonds_paste_paste = 0;
     double strain_at_peak_platen = 0.0;  ///< platen strain at the peak [-]
-    double platen_imbalance = 0.0;       ///< max |σ_top - σ_bottom| / σ before the peak [-]
+    /// max |σ_top - σ_bottom| / σ on the loading branch, from 20 % of the peak to the first
+    /// point at kImbalanceBranchEnd × the peak [-]
+    double platen_imbalance = 0.0;
     double settle_ratio = 0.0;           ///< unbalanced-force ratio reached before loading [-]
     std::int64_t settle_steps = 0;
     double time_step = 0.0;              ///< [s]

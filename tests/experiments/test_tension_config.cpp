@@ -14,6 +14,7 @@
 
 #include "common/input_error.hpp"
 #include "experiments/config/cube_config.hpp"
+#include "core/bond_models.hpp"
 #include "experiments/config/tension_config.hpp"
 #include "reports/cube_output.hpp"
 #include "reports/tension_output.hpp"
@@ -112,6 +113,19 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
         CHECK(tension_strain_rate(automatic, defaults, k) == Approx(quasi_static_strain_rate(k, automatic.material, expected)));
         automatic.material.bond.tensile_strength_mean *= 2.0;  // stronger bonds: a later peak, a faster pull
         CHECK(tension_strain_rate(automatic, defaults, k) == Approx(2.0 * quasi_static_strain_rate(k, automatic.material, expected)));
+    }
+    SECTION("the expected tensile peak strain is the bond law's: flat joints peak later than parallel bonds") {
+        MaterialParams m = plain.material;
+        m.bond.tensile_strength_mean = 16.0e6;
+        m.bond.effective_modulus = 8.0e9;
+        m.bond.model = BondModel::parallel_bond;
+        const double parallel = expected_tensile_peak_strain(m);
+        m.bond.model = BondModel::flat_joint;
+        const double joint = expected_tensile_peak_strain(m);
+        CHECK(joint == Approx(FlatJointLaw::kPlatenTestCost.tension_peak_over_bond_strain * 2e-3));
+        CHECK(joint / parallel == Approx(0.75 / 0.5));  // the laws' measured rows
+        m.bond.model = BondModel::soft_bond;  // a law without a row: 0.5 σ̄_c/Ē
+        CHECK(expected_tensile_peak_strain(m) == Approx(0.5 * 2e-3));
     }
 }
 
