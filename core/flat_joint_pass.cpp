@@ -1,24 +1,30 @@
 // Phase 3 for the flat joint, vectorised across joints: FlatJointLaw::compute_all, the law's own
 // pass over every bond, which the World calls instead of its generic loop (core/bond_pass.hpp;
-// core/flat_joint_law.hpp has the law;
-// docs/bond_laws.md "Flat joint"). Most joints of a loaded specimen are fully bonded and do
-// not break in a given step; for those the law is a fixed sequence of arithmetic per element
-// with no branch. Each block of bonds is cut into batches of kJointLanes:
-//   1. a scalar scan copies the inputs of the fully bonded joints into structure-of-arrays
-//      lanes (particle state, the joint's header and element shear forces, its constants);
-//   2. three loops over the lanes run the pair kinematics and the frame, then each element
-//      (element loop outside, lanes inside: one vector operation serves kJointLanes joints),
-//      then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function
-//      multiversioning, picked at load time);
-//   3. a scalar pass in bond order writes back the lanes whose elements all held, and runs
-//      every other acting joint (partly or wholly unbonded, or with an element that fails this
-//      step: its lane result is discarded, its state is still the old one) through
-//      FlatJointLaw::step, exactly as the generic bond phase does.
-// The lanes call the law's own helpers (advance_frame, joint_step, element_trial,
-// linear_normal, joint_resultant) in the law's order, and every lane does the same IEEE
-// operations as the scalar code (-ffp-contract=off: no FMA; no reassociation); energies are
-// summed per bond in bond order as before. So the results are bitwise those of the generic
-// phase, for any thread count (the pinned hashes in tests/core/test_determinism.cpp).
+// core/flat_joint_law.hpp has the law; docs/bond_laws.md "Flat joint"). In a given step almost
+// no element of a joint breaks, so the law is a fixed sequence of arithmetic per element, the
+// same for every joint up to selects, and runs across joints in structure-of-arrays lanes:
+//   1. a scalar scan over each block of bonds copies the inputs of every acting joint into lanes
+//      (particle state, the joint's header and element shear forces, its constants): the fully
+//      bonded joints into one set of kJointLanes (L, per batch of kJointLanes bonds), the others
+//      (partly bonded, slit, gapped, broken; with their elements' bonded flags) into a second
+//      (M), run whenever it is full, so its lanes are full but for the block's last;
+//   2. loops over a set run the pair kinematics and the frame, then each element (element loop
+//      outside, lanes inside: one vector operation serves a vector's worth of joints), then the
+//      resultant — compiled for AVX-512, AVX2 and the baseline ISA (function multiversioning,
+//      picked at load time). For M the element loop is split: the normal load of every element
+//      (bonded: linear with its failure test; unbonded: linear if closed over its whole extent,
+//      nil if open), the elements the zero line cuts one joint at a time (unbonded_normal's
+//      closed form), then the shear with the Coulomb cap and the sums in element order;
+//   3. the lanes whose elements all held are written back, and every other joint (an element
+//      that breaks this step, a separated joint to release: its lane result is discarded, its
+//      state is still the old one) runs through FlatJointLaw::step as the generic bond phase
+//      does. The energy terms of a block are summed in bond order and its break events sorted
+//      into bond order, as M's joints run out of order.
+// The lanes call the law's own helpers (advance_frame, joint_step, element_trial, linear_normal,
+// unbonded_normal, joint_resultant) in the law's order, selects stand for its branches, and
+// every lane does the same IEEE operations as the scalar code (-ffp-contract=off: no FMA; no
+// reassociation). So the results are bitwise those of the generic phase, for any thread count
+// (tests/core/test_determinism.cpp: the pinned hashes, and the lanes against the scalar kernel).
 #include <algorithm>
 #include <cstring>
 #include <memory>
@@ -44,14 +50,24 @@ struct JointLanes {
     double scale[kJointLanes], radius[kJointLanes], kn[kJointLanes], ks[kJointLanes];
     double strength[kJointLanes], cohesion[kJointLanes], tan_phi[kJointLanes];
     double shear[kMaxLaneElements][2][kJointLanes];  ///< F_s,e in (t1, t2): in, then out [N]
+    // inputs of joints not fully bonded: elements' bonded flags (1/0), g_0 [m], μ_r, the
+    // surface gap beyond which a separated joint is released [m]
+    double bonded[kMaxLaneElements][kJointLanes];
+    double gap0[kJointLanes], friction[kJointLanes], release_gap[kJointLanes];
     // the frame and step constants after this step's increments
     double t1[3][kJointLanes], t2[3][kJointLanes], n[3][kJointLanes], arm_b[3][kJointLanes];
-    double wy[kJointLanes], wz[kJointLanes], bend_total[3][kJointLanes];
+    double wy[kJointLanes], wz[kJointLanes], w_norm[kJointLanes], gap[kJointLanes], bend_total[3][kJointLanes];
     double jkn[kJointLanes], jks[kJointLanes], R2[kJointLanes], ksR4[kJointLanes], inv_ks_r2[kJointLanes];
     double du1[kJointLanes], du2[kJointLanes], dtwist[kJointLanes];
     // element sums and results
     double s1[kJointLanes], s2[kJointLanes], fn[kJointLanes], p1[kJointLanes], p2[kJointLanes];
     double tw[kJointLanes], stored[kJointLanes], fails[kJointLanes];
+    double slip[kJointLanes], any_bonded[kJointLanes], all_open[kJointLanes];  ///< joints not fully bonded
+    // each element's normal load (joints not fully bonded): F_n, P, energy, and whether the zero
+    // line cuts it; whether it cuts any of the joint's
+    double el_fn[kMaxLaneElements][kJointLanes], el_p1[kMaxLaneElements][kJointLanes];
+    double el_p2[kMaxLaneElements][kJointLanes], el_energy[kMaxLaneElements][kJointLanes];
+    double el_cut[kMaxLaneElements][kJointLanes], any_cut[kJointLanes];
     double force[3][kJointLanes], torque[3][kJointLanes], shear_res[3][kJointLanes], bend_res[3][kJointLanes];
 };
 
@@ -83,6 +99,8 @@ __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
         L.normal[l] = f.normal;
         L.wy[l] = f.wy;
         L.wz[l] = f.wz;
+        L.w_norm[l] = f.w_norm;
+        L.gap[l] = kin.gap;
         L.jkn[l] = js.kn;
         L.jks[l] = js.ks;
         L.R2[l] = js.R2;
@@ -92,7 +110,8 @@ __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
         L.du2[l] = js.du2;
         L.dtwist[l] = js.dtwist;
         L.s1[l] = L.s2[l] = L.fn[l] = L.p1[l] = L.p2[l] = L.tw[l] = L.stored[l] = 0.0;
-        L.fails[l] = 0.0;
+        L.fails[l] = L.slip[l] = L.any_bonded[l] = L.any_cut[l] = 0.0;
+        L.all_open[l] = 1.0;
     }
 }
 
@@ -136,6 +155,137 @@ __attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::si
     }
 }
 
+/// The frame and step constants of lane l, as FlatJointLaw::step has them.
+__attribute__((always_inline)) inline void lane_frame(const JointLanes& L, int l, flat_detail::JointFrame& f,
+                                                      flat_detail::JointStep& js) {
+    f.wy = L.wy[l];
+    f.wz = L.wz[l];
+    f.w_norm = L.w_norm[l];
+    f.twist = L.twist[l];
+    f.normal = L.normal[l];
+    js.kn = L.jkn[l];
+    js.ks = L.jks[l];
+    js.R = L.radius[l];
+    js.R2 = L.R2[l];
+    js.ksR4 = L.ksR4[l];
+    js.inv_ks_r2 = L.inv_ks_r2[l];
+    js.du1 = L.du1[l];
+    js.du2 = L.du2[l];
+    js.dtwist = L.dtwist[l];
+}
+
+/// Loop 2a of a joint not fully bonded, for one element: its normal load as FlatJointLaw::step
+/// has it, for every lane at once. Bonded: the linear stress and the failure test (a failure
+/// sends the joint to the scalar kernel). Unbonded (unbonded_normal): closed over its whole
+/// extent, the linear stress at gap g_0 + δ_e; open, none; cut by the zero line, marked for
+/// cut_elements(). Every selected value is the scalar kernel's, bit for bit.
+__attribute__((always_inline)) inline void mixed_normal(JointLanes& L, std::size_t e, const DiscElement& g) {
+    using namespace flat_detail;
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        JointFrame f;
+        JointStep js;
+        lane_frame(L, l, f, js);
+        const ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
+        const bool bonded = L.bonded[e][l] != 0.0;
+        const double gap = L.gap0[l] + t.opening;
+        const double spread = js.R * f.w_norm * g.reach;
+        const bool closed = gap + spread <= 0.0;
+        const bool open = !closed & (gap - spread >= 0.0);
+        // the linear stress: bonded at its opening, or unbonded and closed at its gap (else none)
+        const bool loaded = bonded | closed;
+        const NormalLoad load = linear_normal(g, f, js.kn, js.R, bonded ? t.opening : gap);
+        const double inv_a = g.inv_area / js.R2;
+        const bool fails = FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
+                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
+        const bool cut = !bonded & !closed & !open;
+        L.el_fn[e][l] = loaded ? load.fn : 0.0;
+        L.el_p1[e][l] = loaded ? load.p1 : 0.0;
+        L.el_p2[e][l] = loaded ? load.p2 : 0.0;
+        L.el_energy[e][l] = loaded ? load.energy : 0.0;
+        L.el_cut[e][l] = cut ? 1.0 : 0.0;
+        L.any_cut[l] = cut ? 1.0 : L.any_cut[l];
+        L.fails[l] = (bonded & fails) ? 1.0 : L.fails[l];
+        L.any_bonded[l] = bonded ? 1.0 : L.any_bonded[l];
+        L.all_open[l] = (!bonded & open) ? L.all_open[l] : 0.0;
+    }
+}
+
+/// Loop 2b, one lane at a time: the normal load of the elements cut by the zero line, over their
+/// compressed part (unbonded_normal, the joint's zero line made once for its cut elements).
+inline void cut_elements(JointLanes& L, std::span<const DiscElement> elements) {
+    using namespace flat_detail;
+    for (int l = 0; l < L.count; ++l) {
+        if (L.any_cut[l] == 0.0 || L.fails[l] != 0.0) continue;
+        JointFrame f;
+        JointStep js;
+        lane_frame(L, l, f, js);
+        ZeroLineCache zero_line;
+        for (std::size_t e = 0; e < elements.size(); ++e) {
+            if (L.el_cut[e][l] == 0.0) continue;
+            const ElementTrial t = element_trial(elements[e], f, js, L.shear[e][0][l], L.shear[e][1][l]);
+            const NormalLoad load = unbonded_normal(elements[e], f, js.kn, js.R, L.gap0[l] + t.opening,
+                                                    L.gap0[l] + f.normal, zero_line);
+            L.el_fn[e][l] = load.fn;
+            L.el_p1[e][l] = load.p1;
+            L.el_p2[e][l] = load.p2;
+            L.el_energy[e][l] = load.energy;
+        }
+    }
+}
+
+/// Loop 2c, for one element: its shear (the Coulomb cap |F_s| <= μ_r max(-F_n, 0) of an unbonded
+/// element, with its slip energy) and the joint's sums in element order, as FlatJointLaw::step.
+__attribute__((always_inline)) inline void mixed_shear(JointLanes& L, std::size_t e, const DiscElement& g) {
+    using namespace flat_detail;
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        JointFrame f;
+        JointStep js;
+        lane_frame(L, l, f, js);
+        const double old1 = L.shear[e][0][l], old2 = L.shear[e][1][l];
+        const ElementTrial t = element_trial(g, f, js, old1, old2);
+        const bool bonded = L.bonded[e][l] != 0.0;
+        const double fn = L.el_fn[e][l];
+        const double limit = fn < 0.0 ? -L.friction[l] * fn : 0.0;
+        const double m2 = t.s1 * t.s1 + t.s2 * t.s2;
+        const bool capped = !bonded & (m2 > limit * limit);
+        const double cap = m2 > 0.0 ? limit / std::sqrt(m2) : 0.0;
+        const double c1 = cap * t.s1, c2 = cap * t.s2;
+        const double slip = -0.5 * ((old1 + c1) * t.du1 + (old2 + c2) * t.du2) -
+                            0.5 * (c1 * c1 + c2 * c2 - old1 * old1 - old2 * old2) * t.inv_ksa;
+        const double s1 = capped ? c1 : t.s1;
+        const double s2 = capped ? c2 : t.s2;
+        // The bonded element's twist energy (>= +0) times its flag (1 or 0): the scalar kernel's
+        // select, bit for bit, written as a product so that the compiler keeps the loop straight.
+        const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist * L.bonded[e][l];
+        const double twist_moment = bonded ? js.ksR4 * g.polar * f.twist : 0.0;
+        L.slip[l] += capped ? slip : 0.0;
+        L.stored[l] += L.el_energy[e][l] + 0.5 * (s1 * s1 + s2 * s2) * t.inv_ksa + twist_energy;
+        L.shear[e][0][l] = s1;
+        L.shear[e][1][l] = s2;
+        L.s1[l] += s1;
+        L.s2[l] += s2;
+        L.fn[l] += fn;
+        L.p1[l] += L.el_p1[e][l];
+        L.p2[l] += L.el_p2[e][l];
+        L.tw[l] += t.xy * s2 - t.xz * s1 - twist_moment;
+    }
+}
+
+/// A joint not fully bonded whose elements are all unbonded and open and whose surfaces are
+/// farther apart than its release gap is released by the scalar kernel.
+__attribute__((always_inline)) inline void mark_releases(JointLanes& L) {
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        const bool releases = (L.any_bonded[l] == 0.0) & (L.all_open[l] != 0.0) & (L.gap[l] > L.release_gap[l]);
+        L.fails[l] = releases ? 1.0 : L.fails[l];
+    }
+}
+
 /// Loop 3: the resultant on B, and its torque about B's centre.
 __attribute__((always_inline)) inline void resultants(JointLanes& L) {
     using namespace flat_detail;
@@ -173,6 +323,16 @@ GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, dou
     resultants(L);
 }
 
+GRADEM_JOINT_CLONES __attribute__((flatten)) void mixed_joint_lanes(JointLanes& L, double dt,
+                                                                    std::span<const DiscElement> elements) {
+    frames(L, dt);
+    for (std::size_t e = 0; e < elements.size(); ++e) mixed_normal(L, e, elements[e]);
+    cut_elements(L, elements);
+    for (std::size_t e = 0; e < elements.size(); ++e) mixed_shear(L, e, elements[e]);
+    mark_releases(L);
+    resultants(L);
+}
+
 /// Whether every family's element table is the same (the lanes share one geometry).
 bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     const auto& a = contexts.front().elements;
@@ -189,9 +349,49 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     return true;
 }
 
-/// FlatJointLaw::compute_all as a list of steps per batch of kJointLanes bonds: scan (the
-/// fully bonded joints into lanes), the lane arithmetic, then in bond order the lanes that held
-/// and every other acting joint through the law's scalar kernel.
+/// A block's per-bond energy terms, summed in bond order at its end (the joints of M run out of
+/// order), and its lane/scalar counts.
+struct BlockState {
+    std::int64_t begin;
+    std::vector<BondStepResult> terms;  ///< per bond of the block (acting ones)
+    std::vector<std::uint8_t> acted;
+    std::vector<BondBreak> breaks;      ///< the scalar kernel's scratch list
+    std::int64_t lanes = 0, scalars = 0;
+
+    BlockState(std::int64_t b, std::int64_t e)
+        : begin(b), terms(static_cast<std::size_t>(e - b)), acted(static_cast<std::size_t>(e - b), 0) {}
+    void lane(std::int64_t k, const BondStepResult& r) {
+        record(k, r);
+        ++lanes;
+    }
+    void scalar(std::int64_t k, const BondStepResult& r) {
+        record(k, r);
+        ++scalars;
+    }
+    void record(std::int64_t k, const BondStepResult& r) {
+        terms[static_cast<std::size_t>(k - begin)] = r;
+        acted[static_cast<std::size_t>(k - begin)] = 1;
+    }
+    /// Every term as the scalar pass adds them, bond by bond.
+    [[nodiscard]] BondPassEnergy sum() const {
+        BondPassEnergy e;
+        for (std::size_t n = 0; n < terms.size(); ++n) {
+            if (!acted[n]) continue;
+            e.stored += terms[n].stored;
+            e.released += terms[n].released;
+            e.damage += terms[n].damage;
+            e.slip += terms[n].slip;
+        }
+        e.lane_bonds = lanes;
+        e.scalar_bonds = scalars;
+        return e;
+    }
+};
+
+/// FlatJointLaw::compute_all as a list of steps per batch of kJointLanes bonds: scan (the acting
+/// joints into the fully bonded lanes and the others'), the lane arithmetic, then in bond order
+/// the lanes that took the common path and every other acting joint through the law's scalar
+/// kernel.
 struct FlatJointPass {
     const BondPass& pass;
     double dt;
@@ -215,45 +415,72 @@ struct FlatJointPass {
     }
 
     void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
-        BondPassEnergy e;
-        std::vector<BondBreak> breaks;
-        auto lanes = std::make_unique_for_overwrite<JointLanes>();  // no zero-fill of 20 kB per block
-        JointLanes& L = *lanes;
-        std::int8_t which[kJointLanes];  // per bond of the batch: its lane, -1 scalar or not acting
+        BlockState st(begin, end);
+        // no zero-fill of 2 x 22 kB per block: the fully bonded joints' lanes, and the others'
+        auto lanes = std::make_unique_for_overwrite<JointLanes[]>(2);
+        JointLanes& L = lanes[0];
+        JointLanes& M = lanes[1];
+        M.count = 0;
+        std::int64_t m_bond[kJointLanes];  // the bond of each lane of M
+        std::int8_t which[kJointLanes];    // per bond of the batch: its lane in L, or -1
         for (std::int64_t b0 = begin; b0 < end; b0 += kJointLanes) {
             const std::int64_t b1 = std::min(end, b0 + kJointLanes);
-            scan(b0, b1, end, L, which);
+            scan(b0, b1, end, L, M, m_bond, which, st, blk);
             if (L.count > 0) joint_lanes(L, dt, elements);
             for (std::int64_t k = b0; k < b1; ++k) {
                 const int l = which[static_cast<std::size_t>(k - b0)];
-                if (l >= 0 && L.fails[l] == 0.0) {
-                    store_lane(k, L, l, e);
-                    ++e.lane_bonds;
-                } else if (bond_acts(pass.bonds[static_cast<std::size_t>(k)])) {
-                    scalar_joint(k, blk, breaks, e);
-                    ++e.scalar_bonds;
-                }
+                if (l >= 0 && L.fails[l] == 0.0) st.lane(k, store_lane(k, L, l));
+                else if (l >= 0 || (!use_lanes && bond_acts(pass.bonds[static_cast<std::size_t>(k)])))
+                    st.scalar(k, scalar_joint(k, blk, st.breaks));
             }
         }
-        partial[static_cast<std::size_t>(blk)] = e;
+        flush(M, m_bond, st, blk);
+        partial[static_cast<std::size_t>(blk)] = st.sum();
+        sort_breaks(broken[static_cast<std::size_t>(blk)]);
     }
 
-    /// 1. The fully bonded joints of [b0, b1) into lanes: intact and interface 0
-    ///    (kPartlyBonded: some element unbonded); `which` gets each bond's lane or -1.
+    /// 1. The acting joints of [b0, b1) into lanes: the fully bonded ones (intact and
+    ///    interface 0; kPartlyBonded: some element unbonded) into L, `which` getting their lane
+    ///    (-1 for the others); the others into M with their elements' flags, M run and emptied
+    ///    each time it is full, so its lanes are full but for the block's last.
     __attribute__((always_inline)) inline void scan(std::int64_t b0, std::int64_t b1, std::int64_t end, JointLanes& L,
-                                                    std::int8_t* which) const {
-        int count = 0;
+                                                    JointLanes& M, std::int64_t* m_bond, std::int8_t* which, BlockState& st,
+                                                    std::int64_t blk) {
+        L.count = 0;
         for (std::int64_t k = b0; k < b1; ++k) {
             prefetch_ahead(k, end);
             const auto slot = static_cast<std::size_t>(k - b0);
             which[slot] = -1;
             const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
-            if (!use_lanes || b.state != BondState::intact || b.interface != 0) continue;
-            const int l = count++;
-            which[slot] = static_cast<std::int8_t>(l);
-            load_joint(L, l, k, b);
+            if (!use_lanes || !bond_acts(b)) continue;
+            if (b.state == BondState::intact && b.interface == 0) {
+                which[slot] = static_cast<std::int8_t>(L.count);
+                load_joint(L, L.count++, k, b);
+                continue;
+            }
+            m_bond[M.count] = k;
+            load_joint(M, M.count, k, b);
+            load_interface(M, M.count++, k, b);
+            if (M.count == kJointLanes) flush(M, m_bond, st, blk);
         }
-        L.count = count;
+    }
+
+    /// The joints of M through their lanes: each that took the common path stored, the others
+    /// through the scalar kernel; M emptied.
+    void flush(JointLanes& M, const std::int64_t* m_bond, BlockState& st, std::int64_t blk) {
+        if (M.count == 0) return;
+        mixed_joint_lanes(M, dt, elements);
+        for (int l = 0; l < M.count; ++l) {
+            if (M.fails[l] == 0.0) st.lane(m_bond[l], store_lane(m_bond[l], M, l));
+            else st.scalar(m_bond[l], scalar_joint(m_bond[l], blk, st.breaks));
+        }
+        M.count = 0;
+    }
+
+    /// A block's break events in bond order (the joints of M may run after later bonds; the
+    /// events of one joint stay in element order).
+    static void sort_breaks(std::vector<BreakEvent>& events) {
+        std::stable_sort(events.begin(), events.end(), [](const BreakEvent& a, const BreakEvent& b) { return a.bond < b.bond; });
     }
 
     /// Prefetches for bond k: particle j of a bond a few bonds ahead (a random access), and that
@@ -305,8 +532,19 @@ struct FlatJointPass {
         L.tan_phi[l] = contexts[b.family_pair].tan_phi;
     }
 
-    /// A fully bonded joint whose elements all held: the lane's results become its state.
-    __attribute__((always_inline)) inline void store_lane(std::int64_t k, const JointLanes& L, int l, BondPassEnergy& e) const {
+    /// Lane l of a joint not fully bonded: its elements' bonded flags, g_0, μ_r, release gap.
+    __attribute__((always_inline)) inline void load_interface(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
+        using namespace flat_side;
+        const double* side = side_data + static_cast<std::size_t>(k) * stride;
+        for (std::size_t el = 0; el < elements.size(); ++el) L.bonded[el][l] = side[kFlatJointHeader + el * kFlatElementSize];
+        L.gap0[l] = side[initial_gap];
+        L.release_gap[l] = side[release_gap];
+        L.friction[l] = contexts[b.family_pair].friction;
+    }
+
+    /// A joint whose lane took the law's common path (no element failed or was cut, nothing
+    /// released): the lane's results become its state.
+    __attribute__((always_inline)) inline BondStepResult store_lane(std::int64_t k, const JointLanes& L, int l) const {
         using namespace flat_side;
         ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
         double* side = side_data + static_cast<std::size_t>(k) * stride;
@@ -326,18 +564,16 @@ struct FlatJointPass {
         b.bend_moment = lane(L.bend_res, l);
         BondStepResult r;
         r.stored = track ? L.stored[l] : 0.0;
-        e.stored += r.stored;  // every sum as the scalar path adds it (+0 adds change no bit)
-        e.released += r.released;
-        e.damage += r.damage;
-        e.slip += r.slip;
+        r.slip = track ? L.slip[l] : 0.0;
         PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
         out.force_j += lane(L.force, l);
         out.torque_j += lane(L.torque, l);
+        return r;
     }
 
     /// A joint through the law's scalar kernel, as the generic bond phase does; its breaks
     /// into block `blk`'s events.
-    void scalar_joint(std::int64_t k, std::int64_t blk, std::vector<BondBreak>& breaks, BondPassEnergy& e) {
+    BondStepResult scalar_joint(std::int64_t k, std::int64_t blk, std::vector<BondBreak>& breaks) {
         const ParticleSet& particles = pass.particles;
         ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
         const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
@@ -348,19 +584,16 @@ struct FlatJointPass {
         const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
         double* side = side_data + static_cast<std::size_t>(k) * stride;
         const BondStepResult r = FlatJointLaw::step(contexts[b.family_pair], b, side, sec, bc.stiffness, kin, breaks);
-        e.stored += r.stored;
-        e.released += r.released;
-        e.damage += r.damage;
-        e.slip += r.slip;
         for (const BondBreak& x : breaks)
             broken[static_cast<std::size_t>(blk)].push_back({pass.step, pass.time, static_cast<std::int32_t>(k), b.i, b.j, x.mode,
                                                              s.xa + kin.arm_a + x.offset, kin.normal, sec.radius, x.tensile_stress,
                                                              x.shear_stress, x.element});
         breaks.clear();
-        if (r.failure != BondState::intact) return;
+        if (r.failure != BondState::intact) return r;
         PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
         out.force_j += r.force_j;
         out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
+        return r;
     }
 };
 

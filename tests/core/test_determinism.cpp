@@ -109,8 +109,9 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
 // The vectorised pass over flat joints (core/flat_joint_pass.cpp) against the law's scalar
 // kernel for every joint: the same state bits, break count and every energy term, on
 // bonded-only and on mixed joints (slit, gapped, a friction angle), past the first breaks; and
-// the pass's count of its paths: the lanes take the fully bonded joints, the scalar kernel the
-// others (the mixed specimen's joints are 40 % unbonded from the start).
+// the pass's count of its paths: the lanes take every joint but one with an element that breaks
+// in the step (the mixed specimen's joints are 40 % unbonded from the start: theirs too, with
+// the elements the zero line cuts), the scalar kernel those few.
 TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[core][determinism]") {
     for (const bool mixed : {false, true}) {
         INFO((mixed ? "bonded, gapped and slit" : "bonded"));
@@ -126,8 +127,8 @@ TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[c
         CHECK(p_vec.bond_lane_steps + p_vec.bond_scalar_steps == p_scalar.bond_scalar_steps);
         const double scalar_share = static_cast<double>(p_vec.bond_scalar_steps) / static_cast<double>(p_scalar.bond_scalar_steps);
         INFO("scalar share " << scalar_share);
-        CHECK(scalar_share < 0.1 + (mixed ? 0.4 : 0.0));
-        CHECK(scalar_share > (mixed ? 0.3 : 0.0));
+        CHECK(scalar_share < 0.01);
+        CHECK(scalar_share > 0.0);
         REQUIRE(b_vec > 0);
         CHECK(h_vec == h_scalar);
         CHECK(b_vec == b_scalar);
