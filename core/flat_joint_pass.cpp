@@ -115,46 +115,6 @@ __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
     }
 }
 
-/// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
-__attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const DiscElement& g) {
-    using namespace flat_detail;
-    const int count = L.count;
-#pragma GCC ivdep
-    for (int l = 0; l < count; ++l) {
-        JointFrame f;
-        f.wy = L.wy[l];
-        f.wz = L.wz[l];
-        f.twist = L.twist[l];
-        f.normal = L.normal[l];
-        JointStep js;
-        js.kn = L.jkn[l];
-        js.ks = L.jks[l];
-        js.R = L.radius[l];
-        js.R2 = L.R2[l];
-        js.ksR4 = L.ksR4[l];
-        js.inv_ks_r2 = L.inv_ks_r2[l];
-        js.du1 = L.du1[l];
-        js.du2 = L.du2[l];
-        js.dtwist = L.dtwist[l];
-        ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
-        const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
-        NormalLoad load = linear_normal(g, f, js.kn, js.R, t.opening);
-        const double inv_a = g.inv_area / js.R2;
-        const bool fails = FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
-                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
-        L.fails[l] = fails ? 1.0 : L.fails[l];
-        L.stored[l] += load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
-        L.shear[e][0][l] = t.s1;
-        L.shear[e][1][l] = t.s2;
-        L.s1[l] += t.s1;
-        L.s2[l] += t.s2;
-        L.fn[l] += load.fn;
-        L.p1[l] += load.p1;
-        L.p2[l] += load.p2;
-        L.tw[l] += t.xy * t.s2 - t.xz * t.s1 - js.ksR4 * g.polar * f.twist;
-    }
-}
-
 /// The frame and step constants of lane l, as FlatJointLaw::step has them.
 __attribute__((always_inline)) inline void lane_frame(const JointLanes& L, int l, flat_detail::JointFrame& f,
                                                       flat_detail::JointStep& js) {
@@ -172,6 +132,34 @@ __attribute__((always_inline)) inline void lane_frame(const JointLanes& L, int l
     js.du1 = L.du1[l];
     js.du2 = L.du2[l];
     js.dtwist = L.dtwist[l];
+}
+
+/// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
+__attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const DiscElement& g) {
+    using namespace flat_detail;
+    const int count = L.count;
+#pragma GCC ivdep
+    for (int l = 0; l < count; ++l) {
+        JointFrame f;
+        JointStep js;
+        lane_frame(L, l, f, js);
+        ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
+        const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
+        NormalLoad load = linear_normal(g, f, js.kn, js.R, t.opening);
+        const double inv_a = g.inv_area / js.R2;
+        const bool fails = FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
+                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
+        L.fails[l] = fails ? 1.0 : L.fails[l];
+        L.stored[l] += load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
+        L.shear[e][0][l] = t.s1;
+        L.shear[e][1][l] = t.s2;
+        L.s1[l] += t.s1;
+        L.s2[l] += t.s2;
+        L.fn[l] += load.fn;
+        L.p1[l] += load.p1;
+        L.p2[l] += load.p2;
+        L.tw[l] += t.xy * t.s2 - t.xz * t.s1 - js.ksR4 * g.polar * f.twist;
+    }
 }
 
 /// Loop 2a of a joint not fully bonded, for one element: its normal load as FlatJointLaw::step
