@@ -134,6 +134,17 @@ __attribute__((always_inline)) inline void lane_frame(const JointLanes& L, int l
     js.dtwist = L.dtwist[l];
 }
 
+/// Whether lane l's bonded element fails at its linear load and trial shear (the law's test on
+/// the element's mean stresses).
+__attribute__((always_inline)) inline bool lane_element_fails(const JointLanes& L, int l, const DiscElement& g,
+                                                              const flat_detail::JointStep& js,
+                                                              const flat_detail::NormalLoad& load,
+                                                              const flat_detail::ElementTrial& t) {
+    const double inv_a = g.inv_area / js.R2;
+    return FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a, L.strength[l],
+                                       L.cohesion[l], L.tan_phi[l]);
+}
+
 /// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
 __attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const DiscElement& g) {
     using namespace flat_detail;
@@ -146,10 +157,7 @@ __attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::si
         ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
         const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
         NormalLoad load = linear_normal(g, f, js.kn, js.R, t.opening);
-        const double inv_a = g.inv_area / js.R2;
-        const bool fails = FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
-                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
-        L.fails[l] = fails ? 1.0 : L.fails[l];
+        L.fails[l] = lane_element_fails(L, l, g, js, load, t) ? 1.0 : L.fails[l];
         L.stored[l] += load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
         L.shear[e][0][l] = t.s1;
         L.shear[e][1][l] = t.s2;
@@ -184,9 +192,7 @@ __attribute__((always_inline)) inline void mixed_normal(JointLanes& L, std::size
         // the linear stress: bonded at its opening, or unbonded and closed at its gap (else none)
         const bool loaded = bonded | closed;
         const NormalLoad load = linear_normal(g, f, js.kn, js.R, bonded ? t.opening : gap);
-        const double inv_a = g.inv_area / js.R2;
-        const bool fails = FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a,
-                                                       L.strength[l], L.cohesion[l], L.tan_phi[l]);
+        const bool fails = lane_element_fails(L, l, g, js, load, t);
         const bool cut = !bonded & !closed & !open;
         L.el_fn[e][l] = loaded ? load.fn : 0.0;
         L.el_p1[e][l] = loaded ? load.p1 : 0.0;
