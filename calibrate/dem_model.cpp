@@ -156,6 +156,10 @@ private:
         // The engine's version (v2: one time step per step, world_step.cpp); bump whenever the
         // engine's results change on purpose, so the ledger never serves a run of another engine.
         f << "dem cube model v2; genesis v" << exp::kGenesisAlgorithmVersion << "; format v" << exp::kPackingFormatVersion;
+        // A bond that replaces its contact counts the larger of the two springs in the time step
+        // (core/bond_law.hpp add_pair_time_step_stiffness; before, their sum): such runs changed.
+        const BondParams& bond = base_.material.bond;
+        if (bond.model != BondModel::parallel_bond && bond.replaces_contact) f << "; replacing bond's step v2";
         for (const auto& curve : curves_) {
             exp::SpecimenSpec spec = base_.specimen;
             spec.seed = 0;  // seeds are part of each run key

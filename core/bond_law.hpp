@@ -221,4 +221,23 @@ inline TimeStepStiffness disc_time_step_stiffness(const BondSection& s, const Bo
             k.shear * s.area * r * r + k.normal * s.inertia + k.shear * s.polar};
 }
 
+/// Adds a pair's time-step stiffness to its particle's `sum`: the contact's, and the acting
+/// bond's if any (`bond` null: none). The bond acts beside the contact (the parallel bond: two
+/// springs in parallel): both, contact first. The bond replaces the contact (the pair has one
+/// spring or the other, never both: the bond while it acts, the contact once it is released):
+/// the larger, so the step stays stable in either state.
+inline void add_pair_time_step_stiffness(TimeStepStiffness& sum, const TimeStepStiffness& contact,
+                                         const TimeStepStiffness* bond, bool bond_replaces_contact) {
+    if (bond && bond_replaces_contact) {
+        sum.translational += std::max(contact.translational, bond->translational);
+        sum.rotational += std::max(contact.rotational, bond->rotational);
+        return;
+    }
+    sum.translational += contact.translational;
+    sum.rotational += contact.rotational;
+    if (!bond) return;
+    sum.translational += bond->translational;
+    sum.rotational += bond->rotational;
+}
+
 }  // namespace gradem

@@ -344,16 +344,21 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
 }
 
 /// A block's per-bond energy terms, summed in bond order at its end (the joints of M run out of
-/// order), and its lane/scalar counts.
+/// order), and its lane/scalar counts. The terms are not initialised (a bond's are read only
+/// once its flag is set): a block is 2048 bonds, and its step must not start by clearing them.
 struct BlockState {
+    struct Terms {
+        double stored, released, damage, slip;  ///< [J], as BondStepResult's
+    };
     std::int64_t begin;
-    std::vector<BondStepResult> terms;  ///< per bond of the block (acting ones)
+    std::unique_ptr<Terms[]> terms;     ///< per bond of the block (acting ones)
     std::vector<std::uint8_t> acted;
     std::vector<BondBreak> breaks;      ///< the scalar kernel's scratch list
     std::int64_t lanes = 0, scalars = 0;
 
     BlockState(std::int64_t b, std::int64_t e)
-        : begin(b), terms(static_cast<std::size_t>(e - b)), acted(static_cast<std::size_t>(e - b), 0) {}
+        : begin(b), terms(std::make_unique_for_overwrite<Terms[]>(static_cast<std::size_t>(e - b))),
+          acted(static_cast<std::size_t>(e - b), 0) {}
     void lane(std::int64_t k, const BondStepResult& r) {
         record(k, r);
         ++lanes;
@@ -363,13 +368,13 @@ struct BlockState {
         ++scalars;
     }
     void record(std::int64_t k, const BondStepResult& r) {
-        terms[static_cast<std::size_t>(k - begin)] = r;
+        terms[static_cast<std::size_t>(k - begin)] = {r.stored, r.released, r.damage, r.slip};
         acted[static_cast<std::size_t>(k - begin)] = 1;
     }
     /// Every term as the scalar pass adds them, bond by bond.
     [[nodiscard]] BondPassEnergy sum() const {
         BondPassEnergy e;
-        for (std::size_t n = 0; n < terms.size(); ++n) {
+        for (std::size_t n = 0; n < acted.size(); ++n) {
             if (!acted[n]) continue;
             e.stored += terms[n].stored;
             e.released += terms[n].released;
@@ -490,6 +495,8 @@ struct FlatJointPass {
         const char* side_ahead = reinterpret_cast<const char*>(side_data + ka * stride);
         for (std::size_t line = 0; line < stride * sizeof(double); line += 64) __builtin_prefetch(side_ahead + line, 1);
         __builtin_prefetch(&pass.bonds[std::min(ka + kPrefetchAhead, pass.bonds.size() - 1)], 1);
+        if (const std::int32_t slot = pass.bonds[ka].slot; slot >= 0)  // where its force goes
+            __builtin_prefetch(&pass.pair_out[static_cast<std::size_t>(slot)], 1);
         __builtin_prefetch(&pass.constants[ka]);
     }
 

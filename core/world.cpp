@@ -123,6 +123,9 @@ double World::critical_time_step() {
     const auto bond_time_step_stiffness = visit_bond_law(bond_params_.model, [](auto law) {
         return &decltype(law)::time_step_stiffness;
     });
+    // A bond that replaces its pair's contact (every law but the parallel bond, by default)
+    // acts alone while it acts, and the contact alone once it is released.
+    const bool bond_replaces = bond_params_.model != BondModel::parallel_bond && bond_params_.replaces_contact;
     std::vector<double> block_min(static_cast<std::size_t>(block_count(n)),
                                   std::numeric_limits<double>::infinity());
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t b) {
@@ -130,34 +133,34 @@ double World::critical_time_step() {
         for (std::int64_t p = begin; p < end; ++p) {
             const auto i = static_cast<std::size_t>(p);
             const double ri = particles_.radius[i];
-            double k_tran = 0.0, k_rot = 0.0;
+            TimeStepStiffness k;  // the particle's, summed over its pairs and walls
             for (std::int32_t e = incidence_start_[i]; e < incidence_start_[i + 1]; ++e) {
                 const Pair& pr = pairs_[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(e)].slot)];
                 const double ra = particles_.radius[static_cast<std::size_t>(pr.i)];
                 const double rb = particles_.radius[static_cast<std::size_t>(pr.j)];
                 const double kn = contact_normal_stiffness(contact_.effective_modulus, ra, rb);
                 const double ks = kn / contact_.stiffness_ratio;
-                k_tran += std::max(kn, ks);
-                k_rot += ks * ri * ri;
+                const TimeStepStiffness contact{std::max(kn, ks), ks * ri * ri};
                 if (pr.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(pr.bond)])) {
                     const ParallelBond& bond = bonds_[static_cast<std::size_t>(pr.bond)];
                     const BondParams& bp = bond_family_params_[bond.family_pair];
                     const BondSection s = bond_section(bp.radius_multiplier, ra, rb);
-                    const BondStiffness k = bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb);
-                    const TimeStepStiffness t = bond_time_step_stiffness(s, k, ri);
-                    k_tran += t.translational;
-                    k_rot += t.rotational;
+                    const BondStiffness kb = bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb);
+                    const TimeStepStiffness t = bond_time_step_stiffness(s, kb, ri);
+                    add_pair_time_step_stiffness(k, contact, &t, bond_replaces);
+                } else {
+                    add_pair_time_step_stiffness(k, contact, nullptr, bond_replaces);
                 }
             }
             for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
                 const Wall& wall = walls_[static_cast<std::size_t>(wall_contacts_[static_cast<std::size_t>(w)].wall)];
                 const double kn = wall_normal_stiffness(wall.contact.effective_modulus, ri);
                 const double ks = kn / wall.contact.stiffness_ratio;
-                k_tran += std::max(kn, ks);
-                k_rot += ks * ri * ri;
+                k.translational += std::max(kn, ks);
+                k.rotational += ks * ri * ri;
             }
-            if (k_tran > 0.0) m = std::min(m, std::sqrt(particles_.mass[i] / k_tran));
-            if (k_rot > 0.0) m = std::min(m, std::sqrt(particles_.inertia[i] / k_rot));
+            if (k.translational > 0.0) m = std::min(m, std::sqrt(particles_.mass[i] / k.translational));
+            if (k.rotational > 0.0) m = std::min(m, std::sqrt(particles_.inertia[i] / k.rotational));
         }
         block_min[static_cast<std::size_t>(b)] = m;
     });

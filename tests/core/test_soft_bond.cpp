@@ -229,17 +229,31 @@ TEST_CASE("soft bond in shear: breaks where tau = c - sigma tan(phi), as the par
 
 TEST_CASE("every bond law sets the time step from the undamaged disc stiffness",
           "[core][soft_bond][flat_joint]") {
-    auto critical = [](BondModel model) {
-        World world(simple_cubic(3, 1.0e-3, 1.0e-6), frictionless(1.0e9), undamped());
+    // A simple cubic lattice bonded at its touching pairs; contacts of modulus `contact_gpa`,
+    // bonds of `bond_gpa`. The parallel bond acts beside the contact (the springs add); a law
+    // whose bond replaces the contact has one spring per pair at a time (the larger counts).
+    auto critical = [](BondModel model, bool replaces, double contact_pa, double bond_pa) {
+        World world(simple_cubic(3, 1.0e-3, 1.0e-6), frictionless(contact_pa), undamped());
         BondParams bp;
         bp.model = model;
-        bp.effective_modulus = 5.0e9;
+        bp.effective_modulus = bond_pa;
+        bp.replaces_contact = replaces;
         world.install_bonds(bp, 2.0e-6);
         return world.critical_time_step();
     };
     World bare(simple_cubic(3, 1.0e-3, 1.0e-6), frictionless(1.0e9), undamped());
-    const double pb = critical(BondModel::parallel_bond);
+    const double pb = critical(BondModel::parallel_bond, true, 1.0e9, 5.0e9);
     CHECK(pb < 0.5 * bare.critical_time_step());  // the bonds dominate
-    CHECK(critical(BondModel::soft_bond) == pb);
-    CHECK(critical(BondModel::flat_joint) == pb);
+    for (BondModel model : {BondModel::soft_bond, BondModel::flat_joint}) {
+        INFO(bond_model_name(model));
+        // Beside the contact: the same sum as the parallel bond's, to the bit.
+        CHECK(critical(model, false, 1.0e9, 5.0e9) == pb);
+        // Replacing it, the bond stiffer: the bond alone, as if the contact were not there
+        // (a contact 10^6 times softer adds under 1e-6 of the stiffness to the sum).
+        const double bond_alone = critical(BondModel::parallel_bond, true, 1.0e3, 5.0e9);
+        CHECK(critical(model, true, 1.0e9, 5.0e9) == Approx(bond_alone).epsilon(1e-6));
+        CHECK(critical(model, true, 1.0e9, 5.0e9) > pb);
+        // Replacing it, the contact stiffer: the contact alone, the bare lattice's step to the bit.
+        CHECK(critical(model, true, 1.0e9, 1.0e6) == bare.critical_time_step());
+    }
 }
