@@ -7,6 +7,7 @@
 
 #include "app/cli.hpp"
 #include "app/commands.hpp"
+#include "calibrate/execution/code_version.hpp"
 #include "core/openmp_policy.hpp"
 
 int main(int argc, char** argv) {
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
         return common::exit_success;
     }
     if (all[0] == "--version") {
-        std::cout << "gradem " << GRADEM_VERSION << "\n";
+        std::cout << "gradem " << GRADEM_VERSION << " (code " << cal::code_version() << ")\n";
         return common::exit_success;
     }
     const app::CommandFactory* factory = app::find_command(all[0]);

@@ -1,8 +1,6 @@
 #include "calibrate/execution/code_version.hpp"
 
-#ifndef GRADEM_CODE_VERSION
-#define GRADEM_CODE_VERSION "unknown"
-#endif
+#include "code_version_string.hpp"  // generated at build time: GRADEM_CODE_VERSION
 
 namespace gradem::cal {
 

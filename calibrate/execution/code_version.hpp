@@ -1,8 +1,9 @@
 #pragma once
-// The code version: the project version and the git commit HEAD was at when the build was
-// last configured, CMake configuring again when HEAD moves ("0.1.0+abc123def456"; "+unknown"
-// outside a git checkout). The ledger stores it with every run; the MPI executor refuses ranks
-// that run another.
+// The code version: the project version and the git commit of the source tree when the build
+// was made ("0.1.0+abc123def456"), with "-dirty.<8 hex digits of the diff's SHA-1>" when its
+// tracked files had uncommitted changes, "+unknown" outside a git checkout
+// (calibrate/execution/code_version.cmake, run at every build). The ledger and the summaries
+// store it; the MPI executor refuses ranks that run another.
 
 namespace gradem::cal {
 
