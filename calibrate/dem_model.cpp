@@ -158,8 +158,7 @@ private:
         f << "dem cube model v2; genesis v" << exp::kGenesisAlgorithmVersion << "; format v" << exp::kPackingFormatVersion;
         // A bond that replaces its contact counts the larger of the two springs in the time step
         // (core/bond_law.hpp add_pair_time_step_stiffness; before, their sum): such runs changed.
-        const BondParams& bond = base_.material.bond;
-        if (bond.model != BondModel::parallel_bond && bond.replaces_contact) f << "; replacing bond's step v2";
+        if (base_.material.bond.bond_replaces_contact()) f << "; replacing bond's step v2";
         for (const auto& curve : curves_) {
             exp::SpecimenSpec spec = base_.specimen;
             spec.seed = 0;  // seeds are part of each run key

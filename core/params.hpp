@@ -50,6 +50,10 @@ struct BondParams {
     /// linear contact acts once the bond has broken). false: bond and contact act in parallel
     /// (the parallel bond's arrangement, which the parallel bond always keeps).
     bool replaces_contact = true;
+    /// Whether this law's bonds replace their pair's contact while they act (the contact pass
+    /// skips the pair, the time step counts one spring): replaces_contact, never for the
+    /// parallel bond.
+    [[nodiscard]] bool bond_replaces_contact() const { return model != BondModel::parallel_bond && replaces_contact; }
     /// A law's own parameters: params.law<Law>() (Law::Params, the law header's struct).
     template <class Law>
     typename Law::Params& law() {

@@ -123,9 +123,9 @@ double World::critical_time_step() {
     const auto bond_time_step_stiffness = visit_bond_law(bond_params_.model, [](auto law) {
         return &decltype(law)::time_step_stiffness;
     });
-    // A bond that replaces its pair's contact (every law but the parallel bond, by default)
-    // acts alone while it acts, and the contact alone once it is released.
-    const bool bond_replaces = bond_params_.model != BondModel::parallel_bond && bond_params_.replaces_contact;
+    // A bond that replaces its pair's contact acts alone while it acts, and the contact alone
+    // once it is released.
+    const bool bond_replaces = bond_params_.bond_replaces_contact();
     std::vector<double> block_min(static_cast<std::size_t>(block_count(n)),
                                   std::numeric_limits<double>::infinity());
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t b) {
@@ -141,16 +141,15 @@ double World::critical_time_step() {
                 const double kn = contact_normal_stiffness(contact_.effective_modulus, ra, rb);
                 const double ks = kn / contact_.stiffness_ratio;
                 const TimeStepStiffness contact{std::max(kn, ks), ks * ri * ri};
+                TimeStepStiffness bond_k;
+                const TimeStepStiffness* acting_bond = nullptr;
                 if (pr.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(pr.bond)])) {
-                    const ParallelBond& bond = bonds_[static_cast<std::size_t>(pr.bond)];
-                    const BondParams& bp = bond_family_params_[bond.family_pair];
+                    const BondParams& bp = bond_family_params_[bonds_[static_cast<std::size_t>(pr.bond)].family_pair];
                     const BondSection s = bond_section(bp.radius_multiplier, ra, rb);
-                    const BondStiffness kb = bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb);
-                    const TimeStepStiffness t = bond_time_step_stiffness(s, kb, ri);
-                    add_pair_time_step_stiffness(k, contact, &t, bond_replaces);
-                } else {
-                    add_pair_time_step_stiffness(k, contact, nullptr, bond_replaces);
+                    bond_k = bond_time_step_stiffness(s, bond_stiffness(bp.effective_modulus, bp.stiffness_ratio, ra, rb), ri);
+                    acting_bond = &bond_k;
                 }
+                add_pair_time_step_stiffness(k, contact, acting_bond, bond_replaces);
             }
             for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
                 const Wall& wall = walls_[static_cast<std::size_t>(wall_contacts_[static_cast<std::size_t>(w)].wall)];

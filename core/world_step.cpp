@@ -119,7 +119,7 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
 // so a bond broken this step lets the contact act from the next step on).
 void World::compute_contacts(double dt, double& strain, double& slip) {
     const auto m = static_cast<std::int64_t>(pairs_.size());
-    const bool bond_replaces = bond_params_.model != BondModel::parallel_bond && bond_params_.replaces_contact;
+    const bool bond_replaces = bond_params_.bond_replaces_contact();
     std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(m)));
     for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         EnergyPair e;
