@@ -27,7 +27,7 @@ namespace {
 class CurveModel final : public cal::CubeModel {
 public:
     explicit CurveModel(int points) : inner_(cal::make_analytic_model(2)), points_(points) {}
-    void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
+    void prepare(const cal::PackingSeeds&, int, const std::function<void(const std::string&)>&) override {}
     cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
         cal::RunOutcome o = inner_->run(q, t);
         o.curve_strain.resize(points_, 1e-3);

@@ -58,7 +58,7 @@ public:
     AnalyticCubeModel(std::size_t sands, double noise, double diverge_above)
         : sands_(sands), noise_(noise), diverge_above_(diverge_above) {}
 
-    void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
+    void prepare(const PackingSeeds&, int, const std::function<void(const std::string&)>&) override {}
 
     RunOutcome run(const RunRequest& q, double) const override {
         RunOutcome out = q.test == CubeTest::tension ? tension(q) : compression(q);

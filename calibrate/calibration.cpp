@@ -16,7 +16,7 @@ namespace {
 SolveResult solve_then_tension(const CalibrationProblem& problem, SolveContext& ctx, Evaluator& evaluator,
                                const std::vector<double>& start) {
     if (!problem.tension_at_result_only()) return solve(ctx, start);
-    const int tension_runs = static_cast<int>(ctx.sands.size() * problem.seeds.size());
+    const int tension_runs = problem.runs_per_test(ctx.sands);
     const int reserved = evaluator.reserve();
     evaluator.set_tension_companion(false);
     evaluator.set_reserve(reserved + tension_runs);
@@ -126,7 +126,7 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
     if (const auto rows = ledger.size()) log("ledger " + problem.ledger.string() + ": " + std::to_string(rows) + " runs recorded, resuming");
     // 2. Packings (made once, cached), all sands and seeds, wherever the runs will go.
     log("runs on " + executor.describe());
-    executor.prepare(problem.seeds, log);
+    executor.prepare(problem.packing_seeds(), log);
     const ParameterSpace space(problem.parameters, problem.base.material);
     Evaluator evaluator(problem, space, executor, ledger, model, progress);
     // 3. The mode's solves.
@@ -139,7 +139,10 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
     } else {
         std::size_t on = 0;
         while (problem.sands[on] != problem.calibrate_on) ++on;
-        evaluator.set_reserve(static_cast<int>((all.size() - 1) * problem.seeds.size()));
+        std::vector<std::size_t> others;
+        for (std::size_t s : all)
+            if (s != on) others.push_back(s);
+        evaluator.set_reserve(problem.runs_per_test(others));
         CalibrationStage stage = solve_stage(problem, space, evaluator, "calibrated on " + problem.calibrate_on, {on}, log);
         evaluator.set_reserve(0);
         for (std::size_t s : all)

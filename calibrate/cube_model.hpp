@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,17 +53,33 @@ struct RunOutcome {
     [[nodiscard]] bool ok() const { return status == OutcomeStatus::ok; }
 };
 
+/// `by_sand[sand]` when given and not empty, else `common`.
+inline const std::vector<std::uint64_t>& sand_seeds_or(const std::vector<std::vector<std::uint64_t>>& by_sand,
+                                                       const std::vector<std::uint64_t>& common, std::size_t sand) {
+    return sand < by_sand.size() && !by_sand[sand].empty() ? by_sand[sand] : common;
+}
+
+/// The packing seeds a model prepares: the same list for every sand, or a sand's own list
+/// (CalibrationProblem::seeds_of). Built implicitly from one list (every sand).
+struct PackingSeeds {
+    std::vector<std::uint64_t> common;                ///< every sand's, unless it has its own
+    std::vector<std::vector<std::uint64_t>> by_sand;  ///< index = sand; an empty list: `common`
+    PackingSeeds() = default;
+    PackingSeeds(std::vector<std::uint64_t> seeds) : common(std::move(seeds)) {}  // NOLINT: implicit on purpose
+    PackingSeeds(std::initializer_list<std::uint64_t> seeds) : common(seeds) {}
+    [[nodiscard]] const std::vector<std::uint64_t>& of(std::size_t sand) const { return sand_seeds_or(by_sand, common, sand); }
+};
+
 class CubeModel {
 public:
     virtual ~CubeModel() = default;
     /// Makes (or loads) everything the runs need, e.g. packings, with `workers` threads.
     /// `log` receives one line per prepared case.
-    virtual void prepare(const std::vector<std::uint64_t>& seeds, int workers,
-                         const std::function<void(const std::string&)>& log) = 0;
+    virtual void prepare(const PackingSeeds& seeds, int workers, const std::function<void(const std::string&)>& log) = 0;
     /// Loads what prepare() made for these seeds (e.g. rank 0's packings from the shared
     /// cache folder) and makes nothing: worker ranks of an MPI job call it. Throws a message
     /// naming what it could not load. Default (nothing to share): prepare on one thread.
-    virtual void load_prepared(const std::vector<std::uint64_t>& seeds) { prepare(seeds, 1, {}); }
+    virtual void load_prepared(const PackingSeeds& seeds) { prepare(seeds, 1, {}); }
     /// One test; thread-safe; never throws for a simulation that fails (the status says so).
     /// `timeout_s` <= 0: no time limit.
     [[nodiscard]] virtual RunOutcome run(const RunRequest& request, double timeout_s) const = 0;

@@ -51,11 +51,10 @@ public:
         }
     }
 
-    void prepare(const std::vector<std::uint64_t>& seeds, int workers,
-                 const std::function<void(const std::string&)>& log) override {
+    void prepare(const PackingSeeds& seeds, int workers, const std::function<void(const std::string&)>& log) override {
         std::vector<std::pair<std::size_t, std::uint64_t>> cases;
         for (std::size_t s = 0; s < curves_.size(); ++s)
-            for (std::uint64_t seed : seeds)
+            for (std::uint64_t seed : seeds.of(s))
                 if (!packings_.count({s, seed})) cases.emplace_back(s, seed);
         std::mutex mutex;
         parallel_for(cases.size(), workers, [&](std::size_t k) {
@@ -73,9 +72,9 @@ public:
         });
     }
 
-    void load_prepared(const std::vector<std::uint64_t>& seeds) override {
+    void load_prepared(const PackingSeeds& seeds) override {
         for (std::size_t s = 0; s < curves_.size(); ++s)
-            for (std::uint64_t seed : seeds) {
+            for (std::uint64_t seed : seeds.of(s)) {
                 if (packings_.count({s, seed})) continue;
                 exp::SpecimenSpec spec = base_.specimen;
                 spec.seed = seed;

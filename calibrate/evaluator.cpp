@@ -70,7 +70,7 @@ int Evaluator::runs_needed(const std::vector<std::vector<double>>& points, const
     for (const auto& p : points) {
         const exp::MaterialParams m = space_.material(p);
         for (std::size_t s : sands)
-            for (std::uint64_t seed : problem_.seeds)
+            for (std::uint64_t seed : problem_.seeds_of(s))
                 for (CubeTest t : tests())
                     if (const std::string key = run_key(m, s, seed, t); !used_.count(key)) fresh.insert(key);
     }
@@ -125,7 +125,7 @@ std::vector<Evaluator::Job> Evaluator::jobs_of(const std::vector<std::vector<dou
     for (std::size_t p = 0; p < points.size(); ++p) {
         const exp::MaterialParams m = space_.material(points[p]);
         for (std::size_t s : sands)
-            for (std::uint64_t seed : problem_.seeds)
+            for (std::uint64_t seed : problem_.seeds_of(s))
                 for (CubeTest t : tests()) jobs.push_back({p, s, seed, t, m, run_key(m, s, seed, t), {}, false});
     }
     return jobs;

@@ -31,7 +31,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::vector<PlannedSpecimens> specimen_sets(const CalibrationProblem& problem) {
-    std::vector<PlannedSpecimens> sets{{"fit", problem.base, problem.seeds}};
+    std::vector<PlannedSpecimens> sets{{"fit", problem.base, problem.packing_seeds()}};
     if (problem.scale_up.enabled()) sets.push_back({"scale-up", scale_up_problem(problem).base, problem.scale_up.seeds});
     if (problem.validation.enabled()) {
         const CalibrationProblem v = validation_problem(problem);
@@ -135,10 +135,10 @@ CompressionStrains compression_strains(const std::optional<PlatenTestCost>& cost
 /// The runs of each sand on a set, from the stand-in's path: the fitted runs spread over the
 /// sands the mode fits (study mode: all but the prediction on `calibrate_on`).
 int fitted_runs_of(const CalibrationProblem& problem, const ExpectedRuns& e, std::size_t sand) {
-    const int sands = static_cast<int>(problem.sands.size());
-    if (problem.mode != Mode::study) return e.fitted / sands;
-    const int prediction = (sands - 1) * static_cast<int>(problem.seeds.size());
-    if (problem.sands[sand] != problem.calibrate_on) return static_cast<int>(problem.seeds.size());
+    const int own = static_cast<int>(problem.seeds_of(sand).size());
+    if (problem.mode != Mode::study) return e.fitted * own / std::max(1, problem.runs_per_test());
+    if (problem.sands[sand] != problem.calibrate_on) return own;
+    const int prediction = problem.runs_per_test() - own;
     return std::max(0, e.fitted - prediction);
 }
 
@@ -149,7 +149,7 @@ RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSpecimens&
     const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
     int tension = 0;  // the companions of every compression run, or the result's alone (problem.hpp)
     if (problem.tension.fitted())
-        tension = set.name == "fit" && problem.tension_at_result_only() ? static_cast<int>(set.seeds.size()) : per_set / 2;
+        tension = set.name == "fit" && problem.tension_at_result_only() ? static_cast<int>(set.seeds.of(s).size()) : per_set / 2;
     return plan_runs(problem, set, s, start, {per_set - tension, tension}, probe_seconds, specimens);
 }
 
@@ -164,7 +164,8 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     const lab::GradationCurve curve = exp::load_gradation(config);
     RunCostPlan cost{.sand = problem.sands[s], .set = set.name};
     std::optional<exp::Packing> timed;
-    for (std::uint64_t seed : set.seeds) {
+    const std::vector<std::uint64_t>& seeds = set.seeds.of(s);
+    for (std::uint64_t seed : seeds) {
         exp::SpecimenSpec spec = config.specimen;
         spec.seed = seed;
         SpecimenPlan sp{.sand = cost.sand, .set = set.name, .seed = seed, .packing_key = exp::packing_key(curve, spec)};
@@ -178,12 +179,12 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
                 exp::sample_grains(curve, spec.size_rule, spec.genesis.target_solid_fraction * edge * edge * edge, seed);
             sp.particles = static_cast<std::int64_t>(grains.diameters.size());
             sp.genesis_max_steps = spec.genesis.max_steps;
-            if (!timed && seed == set.seeds.back()) {
+            if (!timed && seed == seeds.back()) {
                 timed = quick_stand_in(grains, spec.genesis.density);
                 cost.timed_on_packing = false;
             }
         }
-        cost.particles += static_cast<double>(sp.particles) / static_cast<double>(set.seeds.size());
+        cost.particles += static_cast<double>(sp.particles) / static_cast<double>(seeds.size());
         specimens.push_back(sp);
     }
     const Probe probe = probe_engine(*timed, material, config.test, probe_seconds);

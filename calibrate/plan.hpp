@@ -95,7 +95,7 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
 struct PlannedSpecimens {
     std::string name;
     exp::CubeConfig base;
-    std::vector<std::uint64_t> seeds;
+    PackingSeeds seeds;
 };
 
 /// How many runs of each test a sand makes on a set (each on every seed in turn).

@@ -55,6 +55,34 @@ std::vector<std::uint64_t> read_seeds(Section& s, const char* key, std::vector<s
     return out;
 }
 
+// [calibration] sand_seeds = { "Van Buren" = [1, 2, 3, 5, 6] }: a sand's own packing seeds,
+// replacing calibration.seeds for it (a sand whose small cubes scatter more gets more seeds;
+// docs/calibration.md "The noise floor").
+void read_sand_seeds(Context& ctx, const toml::node& node, CalibrationProblem& p) {
+    const int line = line_of(node);
+    if (!node.is_table())
+        throw InputError(ctx.file, line, "key 'calibration.sand_seeds' = " + show(node) +
+                                             ": expected a table of sand names to seed lists, e.g. { \"Van Buren\" = [1, 2, 3, 5, 6] }");
+    p.sand_seeds.assign(p.sands.size(), {});
+    for (auto&& [key, value] : *node.as_table()) {
+        const std::string sand(key.str());
+        const auto at = std::find(p.sands.begin(), p.sands.end(), sand);
+        const std::string where = "key 'calibration.sand_seeds.\"" + sand + "\"'";
+        if (at == p.sands.end()) throw InputError(ctx.file, line_of(value), where + ": \"" + sand + "\" is not one of calibration.sands");
+        if (!value.is_array() || value.as_array()->empty())
+            throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected a non-empty array of positive integers");
+        std::vector<std::uint64_t>& list = p.sand_seeds[static_cast<std::size_t>(at - p.sands.begin())];
+        for (const toml::node& item : *value.as_array()) {
+            if (!item.is_integer() || item.as_integer()->get() < 1)
+                throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected a non-empty array of positive integers");
+            const auto seed = static_cast<std::uint64_t>(item.as_integer()->get());
+            if (std::find(list.begin(), list.end(), seed) != list.end())
+                throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected distinct seeds");
+            list.push_back(seed);
+        }
+    }
+}
+
 // [calibration] edge_mm: the specimen edge of every run, replacing the base config's
 // genesis.edge_mm (the same base serves calibrations at several specimen sizes).
 void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
@@ -102,6 +130,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     p.sands = read_strings(s, "sands", {"pre-blended", "Van Buren"});
     s.text("calibrate_on", p.calibrate_on);
     p.seeds = read_seeds(s, "seeds", p.seeds);
+    const toml::node* sand_seeds = s.node("sand_seeds");
     std::string bond_model;
     s.text("bond_model", bond_model);
     double edge = 0.0;  // [m] 0: the base config's genesis.edge_mm
@@ -131,6 +160,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     const std::set<std::string> unique(p.sands.begin(), p.sands.end());
     if (unique.size() != p.sands.size())
         throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' names a sand twice");
+    if (sand_seeds) read_sand_seeds(ctx, *sand_seeds, p);
     if (p.mode == Mode::study) {
         if (p.calibrate_on.empty()) p.calibrate_on = p.sands.front();
         if (!unique.count(p.calibrate_on))
@@ -365,9 +395,12 @@ void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& 
     v = read_specimen_set(ctx, root, p, "validation", "validation specimens");
     const int seeds_line = ctx.keys["validation.seeds"].line;
     for (std::uint64_t seed : v.seeds) {
-        if (contains(p.seeds, seed))
-            throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
-                                                       " is also a fitted seed (calibration.seeds): validation specimens must be unseen");
+        for (std::size_t sand = 0; sand < p.sands.size(); ++sand)
+            if (contains(p.seeds_of(sand), seed))
+                throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) + " is also a fitted seed of " +
+                                                           p.sands[sand] + " (calibration." +
+                                                           (p.seeds_of(sand) == p.seeds ? std::string("seeds") : "sand_seeds") +
+                                                           "): validation specimens must be unseen");
         if (contains(p.scale_up.seeds, seed))
             throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
                                                        " is also a scale-up seed (scale_up.seeds): validation specimens must be unseen");
@@ -492,12 +525,39 @@ std::vector<SandTargets> read_lab_targets(const fs::path& json_file, const std::
     return out;
 }
 
+const std::vector<std::uint64_t>& CalibrationProblem::seeds_of(std::size_t sand) const {
+    return sand_seeds_or(sand_seeds, seeds, sand);
+}
+
+PackingSeeds CalibrationProblem::packing_seeds() const {
+    PackingSeeds out(seeds);
+    out.by_sand = sand_seeds;
+    return out;
+}
+
+int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) const {
+    std::size_t n = 0;
+    for (std::size_t sand : of_sands) n += seeds_of(sand).size();
+    return static_cast<int>(n);
+}
+
+int CalibrationProblem::runs_per_test() const {
+    std::size_t n = 0;
+    for (std::size_t sand = 0; sand < sands.size(); ++sand) n += seeds_of(sand).size();
+    return static_cast<int>(n);
+}
+
 std::string CalibrationProblem::describe() const {
     std::ostringstream d;
     d << "model = " << to_string(model) << "\nmode = " << to_string(mode) << "\nsands =";
     for (const auto& s : sands) d << " '" << s << "'";
     d << "\ncalibrate_on = " << calibrate_on << "\nseeds =";
     for (auto s : seeds) d << " " << s;
+    for (std::size_t k = 0; k < sand_seeds.size(); ++k)  // only when given: other problems keep their fingerprints
+        if (!sand_seeds[k].empty()) {
+            d << "\nseeds of '" << sands[k] << "' =";
+            for (auto s : sand_seeds[k]) d << " " << s;
+        }
     d << "\nbase material = " << material_key(base.material) << "\n";
     for (const auto& q : parameters)
         d << "parameter " << q.name << " = " << (q.free ? "free" : "fixed") << " start " << exact(q.start) << " bounds "
@@ -540,6 +600,7 @@ CalibrationProblem on_specimens(const CalibrationProblem& problem, const Specime
     CalibrationProblem v = problem;
     v.base.specimen.genesis.edge = set.edge;
     v.seeds = set.seeds;
+    v.sand_seeds.clear();
     v.scale_up = {};
     v.validation = {};
     v.solver.max_runs = 1 << 30;

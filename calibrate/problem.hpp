@@ -2,7 +2,8 @@
 // A calibration problem, read from a TOML file (calibrate/README.md documents every key):
 //
 //   [calibration] base (a cube config: specimen size rule, genesis, start material, test),
-//                 mode = "joint" | "per_sand" | "study", sands, calibrate_on, seeds, model,
+//                 mode = "joint" | "per_sand" | "study", sands, calibrate_on, seeds, sand_seeds
+//                 (a sand's own seeds), model,
 //                 bond_model (overrides the base's [material] model; kept in base.material),
 //                 edge_mm, paste_diameter_mm (override the base's cube edge and paste size)
 //   [targets]     lab_results (the lab_results.json of `gradem lab`), modulus/peak/strain weights,
@@ -26,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "calibrate/cube_model.hpp"
 #include "calibrate/parameters.hpp"
 #include "common/named_enum.hpp"
 #include "experiments/config/cube_config.hpp"
@@ -144,7 +146,8 @@ struct CalibrationProblem {
     Mode mode = Mode::joint;
     std::vector<std::string> sands;
     std::string calibrate_on;             ///< study mode: the sand calibrated on
-    std::vector<std::uint64_t> seeds = {1, 2};
+    std::vector<std::uint64_t> seeds = {1, 2};   ///< packing seeds of every sand without its own
+    std::vector<std::vector<std::uint64_t>> sand_seeds;  ///< a sand's own seeds (index = sand; empty: `seeds`)
     std::vector<ParameterSpec> parameters;
     std::filesystem::path lab_results;
     std::vector<SandTargets> targets;     ///< same order as sands
@@ -158,6 +161,14 @@ struct CalibrationProblem {
     int workers = 2;
     double timeout_s = 600.0;
     std::filesystem::path out_dir, ledger;
+
+    /// The packing seeds of sand `sand` ([calibration] sand_seeds, else seeds).
+    [[nodiscard]] const std::vector<std::uint64_t>& seeds_of(std::size_t sand) const;
+    /// Every sand's seeds, as CubeModel::prepare takes them.
+    [[nodiscard]] PackingSeeds packing_seeds() const;
+    /// The runs of one test at one point: the seeds of `of_sands` (default: every sand) summed.
+    [[nodiscard]] int runs_per_test(const std::vector<std::size_t>& of_sands) const;
+    [[nodiscard]] int runs_per_test() const;
 
     /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
     [[nodiscard]] std::vector<Quantity> fitted_quantities() const;

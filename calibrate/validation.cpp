@@ -44,7 +44,7 @@ const char* set_name(SpecimenSet set) { return set == SpecimenSet::scale_up ? "s
 
 }  // namespace
 
-void ValidatedModel::prepare(const std::vector<std::uint64_t>& seeds, int workers,
+void ValidatedModel::prepare(const PackingSeeds& seeds, int workers,
                              const std::function<void(const std::string&)>& log) {
     fit_->prepare(seeds, workers, log);
     for (Extra& e : extras_)
@@ -52,7 +52,7 @@ void ValidatedModel::prepare(const std::vector<std::uint64_t>& seeds, int worker
                                                : std::function<void(const std::string&)>{});
 }
 
-void ValidatedModel::load_prepared(const std::vector<std::uint64_t>& seeds) {
+void ValidatedModel::load_prepared(const PackingSeeds& seeds) {
     fit_->load_prepared(seeds);
     for (Extra& e : extras_) e.model->load_prepared(e.seeds);
 }

@@ -43,8 +43,8 @@ public:
     [[nodiscard]] const CubeModel& validation() const { return model(SpecimenSet::validation); }
 
     /// The fit's packings for `seeds`, each set's for its own seeds.
-    void prepare(const std::vector<std::uint64_t>& seeds, int workers, const std::function<void(const std::string&)>& log) override;
-    void load_prepared(const std::vector<std::uint64_t>& seeds) override;
+    void prepare(const PackingSeeds& seeds, int workers, const std::function<void(const std::string&)>& log) override;
+    void load_prepared(const PackingSeeds& seeds) override;
     [[nodiscard]] RunOutcome run(const RunRequest& request, double timeout_s) const override;
     /// The fit's: the other specimen sets are not part of the problem's identity.
     [[nodiscard]] std::string fingerprint() const override { return fit_->fingerprint(); }

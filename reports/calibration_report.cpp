@@ -418,7 +418,8 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             all_d.push_back(d);
         }
     }
-    json seeds = p.seeds;
+    json seeds = p.seeds, seeds_by_sand = json::object();
+    for (std::size_t s = 0; s < p.sands.size(); ++s) seeds_by_sand[p.sands[s]] = p.seeds_of(s);
     return {{"schema", "gradem-calibration/1"},
             {"config", p.file.string()},
             {"model", to_string(p.model)},
@@ -428,6 +429,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"solver", to_string(p.solver.method)},
             {"sands", p.sands},
             {"packing_seeds", seeds},
+            {"packing_seeds_by_sand", seeds_by_sand},
             {"specimen_edge_mm", p.base.specimen.genesis.edge * 1e3},
             {"lab_results", p.lab_results.string()},
             {"representative_lab_data", p.representative},
@@ -469,7 +471,10 @@ void header_markdown(std::ostringstream& md, const CalibrationProblem& p, const 
     md << (sep == ", " ? ")" : "") << "\n"
        << "- sands: ";
     for (std::size_t s = 0; s < p.sands.size(); ++s) md << (s ? ", " : "") << p.sands[s];
-    md << "; packing seeds per sand: " << p.seeds.size() << " (the same packings for every parameter set); specimen edge "
+    md << "; packing seeds per sand: ";
+    for (std::size_t s = 0; s < p.sands.size(); ++s)
+        if (s == 0 || p.seeds_of(s) != p.seeds_of(0)) md << (s ? ", " + p.sands[s] + " " : "") << p.seeds_of(s).size();
+    md << " (the same packings for every parameter set); specimen edge "
        << fmt(p.base.specimen.genesis.edge * 1e3) << " mm\n"
        << "- DEM test runs: **" << r.runs_used << "** of a budget of " << p.solver.max_runs << " (" << r.runs_executed
        << " run now, " << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed); " << r.history.size()
@@ -647,11 +652,10 @@ std::string curves_csv(const CalibrationProblem& p, const CalibrationResult& r) 
         for (std::size_t s : sands) {
             // The result's curves: on the scale-up specimens (rescaled) when the scales were set there.
             const bool up = scaled_up(st) && st.scaled_outcome(s);
-            const std::vector<std::uint64_t>& seeds = up ? p.scale_up.seeds : p.seeds;
             if (const Evaluation* e = up ? &st.scale_up.prediction : st.evaluation_of(s)) {
                 std::size_t run = 0;
                 for (std::size_t k = 0; k < e->sands.size(); ++k) {
-                    for (std::uint64_t seed : seeds) {
+                    for (std::uint64_t seed : up ? p.scale_up.seeds : p.seeds_of(e->sands[k].sand)) {
                         const RunOutcome& o = e->runs[run++];
                         if (e->sands[k].sand != s) continue;
                         for (std::size_t i = 0; i < o.curve_strain.size(); ++i)

@@ -262,7 +262,7 @@ void MpiExecutor::stop_all(const std::string& reason) {
         }
 }
 
-void MpiExecutor::prepare(const std::vector<std::uint64_t>& seeds, const Log& log) {
+void MpiExecutor::prepare(const PackingSeeds& seeds, const Log& log) {
     model_.prepare(seeds, threads_, log);  // made once, here, into the shared cache
     const auto start = Clock::now();
     for (const Worker& w : workers_)

@@ -85,7 +85,7 @@ public:
     MpiExecutor& operator=(const MpiExecutor&) = delete;
 
     /// Makes the packings on rank 0 (cached), then has every worker load them from the cache.
-    void prepare(const std::vector<std::uint64_t>& seeds, const Log& log) override;
+    void prepare(const PackingSeeds& seeds, const Log& log) override;
     void run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) override;
     [[nodiscard]] int slots() const override;
     [[nodiscard]] std::string describe() const override;

@@ -33,7 +33,7 @@ ThreadExecutor::ThreadExecutor(const CubeModel& model, int workers)
     place_.host = host_name();
 }
 
-void ThreadExecutor::prepare(const std::vector<std::uint64_t>& seeds, const Log& log) {
+void ThreadExecutor::prepare(const PackingSeeds& seeds, const Log& log) {
     if (!preparable_) throw std::logic_error("ThreadExecutor::prepare: the model was given as const (prepare it before)");
     preparable_->prepare(seeds, workers_, log);
 }

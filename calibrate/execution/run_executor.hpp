@@ -35,7 +35,7 @@ public:
 
     virtual ~RunExecutor() = default;
     /// Makes (or loads) what the runs of these packing seeds need, everywhere they may run.
-    virtual void prepare(const std::vector<std::uint64_t>& seeds, const Log& log) = 0;
+    virtual void prepare(const PackingSeeds& seeds, const Log& log) = 0;
     /// Runs every request and returns when all have ended. `done` is called once per request,
     /// never concurrently (it may record into the ledger without a lock of its own). A run
     /// that fails is an outcome, not an exception; an exception thrown by `done` is rethrown
@@ -53,7 +53,7 @@ public:
     ThreadExecutor(CubeModel& model, int workers);
     /// Over a model prepared elsewhere: prepare() is then an error.
     ThreadExecutor(const CubeModel& model, int workers);
-    void prepare(const std::vector<std::uint64_t>& seeds, const Log& log) override;
+    void prepare(const PackingSeeds& seeds, const Log& log) override;
     void run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) override;
     [[nodiscard]] int slots() const override { return workers_; }
     [[nodiscard]] std::string describe() const override;

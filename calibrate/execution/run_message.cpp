@@ -159,7 +159,24 @@ void fields(Io& io, M& m) {
 template <class Io, class M>
     requires std::is_same_v<std::remove_const_t<M>, Prepare>
 void fields(Io& io, M& m) {
-    io(m.seeds);
+    // every sand's list, then each sand's own: its length, then its seeds flattened
+    io(m.seeds.common);
+    std::vector<std::uint64_t> lengths, own;
+    for (const auto& list : m.seeds.by_sand) {
+        lengths.push_back(list.size());
+        own.insert(own.end(), list.begin(), list.end());
+    }
+    io(lengths), io(own);
+    if constexpr (!std::is_const_v<M>) {
+        m.seeds.by_sand.clear();
+        std::size_t at = 0;
+        for (const std::uint64_t n : lengths) {
+            if (n > own.size() - at) throw WireError("prepare message: seed list lengths exceed its seeds");
+            m.seeds.by_sand.emplace_back(own.begin() + static_cast<std::ptrdiff_t>(at), own.begin() + static_cast<std::ptrdiff_t>(at + n));
+            at += n;
+        }
+        if (at != own.size()) throw WireError("prepare message: seeds beyond its seed list lengths");
+    }
 }
 
 template <class Io, class M>

@@ -47,7 +47,7 @@ struct Hello {
     std::string error;  ///< "" if the rank loaded the problem and model, else why not
 };
 struct Prepare {
-    std::vector<std::uint64_t> seeds;
+    PackingSeeds seeds;
 };
 struct Prepared {
     double seconds = 0.0;

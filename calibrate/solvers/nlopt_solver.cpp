@@ -33,7 +33,7 @@ std::string nlopt_reason(nlopt::result r) {
 
 SolveResult solve_nlopt(SolveContext& ctx, Method method, const std::vector<double>& start, BestTracker& tracker) {
     const std::size_t n = ctx.space.size();
-    const int per_eval = static_cast<int>(ctx.sands.size() * ctx.problem.seeds.size());
+    const int per_eval = ctx.problem.runs_per_test(ctx.sands);
     SolveResult result;
     result.method = to_string(method);
     bool out_of_budget = false;

@@ -188,7 +188,7 @@ SolveResult solve_scaling(SolveContext& ctx, const std::vector<double>& start) {
     SolveResult head;
     head.method = "scaling";
     if (idx.stiffness.empty() && idx.strength.empty()) return fall_back(ctx, start, tracker, head, "no free scale parameter");
-    const int per_eval = static_cast<int>(ctx.sands.size() * ctx.problem.seeds.size());
+    const int per_eval = ctx.problem.runs_per_test(ctx.sands);
     try {
         // 1. The start point.
         const Evaluation e0 = ctx.evaluator.evaluate(start, ctx.sands, "start");

@@ -42,6 +42,7 @@ void select_sands(CalibrationProblem& problem, const StudyConfig& config) {
 
 CalibrationProblem as_study_problem(CalibrationProblem problem, const StudyConfig& config) {
     problem.seeds = config.seeds;
+    problem.sand_seeds.clear();  // the study's seeds for every sand
     if (!config.sands.empty()) select_sands(problem, config);
     problem.workers = config.workers;
     problem.timeout_s = config.timeout_s;
@@ -73,11 +74,11 @@ std::optional<std::size_t> StudyModels::find(const CalibrationProblem& problem) 
     return std::nullopt;
 }
 
-void StudyModels::prepare(const std::vector<std::uint64_t>& seeds, int workers, const std::function<void(const std::string&)>& log) {
+void StudyModels::prepare(const PackingSeeds& seeds, int workers, const std::function<void(const std::string&)>& log) {
     for (auto& m : models_) m->prepare(seeds, workers, log);
 }
 
-void StudyModels::load_prepared(const std::vector<std::uint64_t>& seeds) {
+void StudyModels::load_prepared(const PackingSeeds& seeds) {
     for (auto& m : models_) m->load_prepared(seeds);
 }
 

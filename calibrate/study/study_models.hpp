@@ -40,8 +40,8 @@ public:
     [[nodiscard]] std::size_t offset(std::size_t k) const { return offsets_.at(k); }
 
     /// Prepares (loads) every case's model for the seeds.
-    void prepare(const std::vector<std::uint64_t>& seeds, int workers, const std::function<void(const std::string&)>& log) override;
-    void load_prepared(const std::vector<std::uint64_t>& seeds) override;
+    void prepare(const PackingSeeds& seeds, int workers, const std::function<void(const std::string&)>& log) override;
+    void load_prepared(const PackingSeeds& seeds) override;
     /// Runs request.sand's case model with the case's own sand number.
     [[nodiscard]] RunOutcome run(const RunRequest& request, double timeout_s) const override;
     /// Every case model's fingerprint, in order.
@@ -60,7 +60,7 @@ private:
 class CaseExecutor final : public RunExecutor {
 public:
     CaseExecutor(RunExecutor& all_cases, std::size_t offset) : all_(all_cases), offset_(offset) {}
-    void prepare(const std::vector<std::uint64_t>&, const Log&) override {}
+    void prepare(const PackingSeeds&, const Log&) override {}
     void run(const std::vector<RunRequest>& requests, double timeout_s, const RunDone& done) override;
     [[nodiscard]] int slots() const override { return all_.slots(); }
     [[nodiscard]] std::string describe() const override { return all_.describe(); }

@@ -59,7 +59,7 @@ public:
                 ledger_ = std::make_unique<cal::Ledger>(problem_.ledger, cal::problem_fingerprint(problem_, *model_),
                                                         problem_.describe() + model_->fingerprint() + "\n");
                 executor_ = std::make_unique<cal::ThreadExecutor>(*model_, problem_.workers);
-                executor_->prepare(problem_.seeds, log_hook(log, cancel));
+                executor_->prepare(problem_.packing_seeds(), log_hook(log, cancel));
             },
             cancel);
         make_evaluator();
@@ -116,15 +116,17 @@ public:
 
     py::dict results(const cal::Evaluation& e) const {
         py::dict out;
-        const std::size_t seeds = problem_.seeds.size();
+        std::size_t first = 0;  // the sand's first run: runs are by sand, then seed
         for (std::size_t s = 0; s < problem_.sands.size(); ++s) {
             py::dict sand;
-            sand["seeds"] = problem_.seeds;
+            const std::vector<std::uint64_t>& seeds = problem_.seeds_of(s);
+            sand["seeds"] = seeds;
             std::vector<const cal::RunOutcome*> runs, tension;
-            for (std::size_t k = 0; k < seeds; ++k) {
-                runs.push_back(&e.runs.at(s * seeds + k));
-                if (!e.tension_runs.empty()) tension.push_back(&e.tension_runs.at(s * seeds + k));
+            for (std::size_t k = 0; k < seeds.size(); ++k) {
+                runs.push_back(&e.runs.at(first + k));
+                if (!e.tension_runs.empty()) tension.push_back(&e.tension_runs.at(first + k));
             }
+            first += seeds.size();
             const auto values = [](const std::vector<const cal::RunOutcome*>& rs, cal::Quantity q) {
                 return column<double>(rs, [q](const cal::RunOutcome* r) {
                     return r->ok() ? in_display_units(q, cal::outcome_value(*r, q)) : std::nan("");

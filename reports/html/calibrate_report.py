@@ -473,13 +473,22 @@ def stage_notes(st, label_it):
     return notes
 
 
+def packing_seeds_text(summary):
+    """Every sand's seeds, or each sand's own list when they differ ("pre-blended: 1, 2; Van Buren: 1, 2, 3")."""
+    by_sand = summary.get("packing_seeds_by_sand") or {}
+    lists = {sand: ", ".join(str(s) for s in seeds) for sand, seeds in by_sand.items()}
+    if len(set(lists.values())) > 1:
+        return "; ".join(f"{sand}: {seeds}" for sand, seeds in lists.items())
+    return ", ".join(str(s) for s in summary.get("packing_seeds") or [])
+
+
 def run_rows(summary, runs):
     return [["DEM test runs", f"{runs.get('total', '?')} of a budget of {runs.get('budget', '?')} ({runs.get('executed_now', '?')} run now, "
              f"{runs.get('from_ledger', '?')} from the ledger, {runs.get('failed', '?')} failed)"],
             ["scale-up and validation runs", f"{runs.get('scale_up', 0)} and {runs.get('validation', 0)} (apart from the budget)"],
             ["evaluations", str(summary.get("evaluations", "?"))],
             ["wall time", clock(summary.get("wall_seconds"))],
-            ["packing seeds per sand", ", ".join(str(s) for s in summary.get("packing_seeds") or [])],
+            ["packing seeds per sand", packing_seeds_text(summary)],
             ["lab results", str(summary.get("lab_results", ""))],
             ["ledger", str(summary.get("ledger", ""))],
             ["problem fingerprint", str(summary.get("problem_fingerprint", ""))],

@@ -73,7 +73,7 @@ class ScaledSpecimenModel final : public cal::CubeModel {
 public:
     ScaledSpecimenModel(double modulus_factor, double strength_factor)
         : inner_(cal::make_analytic_model(2, 0.001)), modulus_(modulus_factor), strength_(strength_factor) {}
-    void prepare(const std::vector<std::uint64_t>&, int, const std::function<void(const std::string&)>&) override {}
+    void prepare(const cal::PackingSeeds&, int, const std::function<void(const std::string&)>&) override {}
     cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
         cal::RunOutcome o = inner_->run(q, t);
         o.modulus_pa *= modulus_;

@@ -33,10 +33,10 @@ class FaultyModel final : public cal::CubeModel {
 public:
     FaultyModel(std::unique_ptr<cal::CubeModel> inner, int slow_ms, int die_after, int hang_after)
         : inner_(std::move(inner)), slow_ms_(slow_ms), die_after_(die_after), hang_after_(hang_after) {}
-    void prepare(const std::vector<std::uint64_t>& s, int w, const std::function<void(const std::string&)>& l) override {
+    void prepare(const cal::PackingSeeds& s, int w, const std::function<void(const std::string&)>& l) override {
         inner_->prepare(s, w, l);
     }
-    void load_prepared(const std::vector<std::uint64_t>& s) override { inner_->load_prepared(s); }
+    void load_prepared(const cal::PackingSeeds& s) override { inner_->load_prepared(s); }
     cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
         const int n = ++runs_;
         if (die_after_ > 0 && n > die_after_) _exit(3);

@@ -167,7 +167,7 @@ namespace {
 class SlowModel final : public cal::CubeModel {
 public:
     explicit SlowModel(std::unique_ptr<cal::CubeModel> inner) : inner_(std::move(inner)) {}
-    void prepare(const std::vector<std::uint64_t>& s, int w, const std::function<void(const std::string&)>& l) override { inner_->prepare(s, w, l); }
+    void prepare(const cal::PackingSeeds& s, int w, const std::function<void(const std::string&)>& l) override { inner_->prepare(s, w, l); }
     cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
         std::this_thread::sleep_for(std::chrono::milliseconds(40));
         return inner_->run(q, t);

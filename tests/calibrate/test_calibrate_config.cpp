@@ -144,19 +144,19 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
     TempDir dir("cal-shipped");
     write_lab(dir.path);
     const fs::path configs = fs::path(GRADEM_SOURCE_DIR) / "calibrate" / "configs";
-    // What each shipped config documents: its bond model, cube edge, seeds and free parameters.
+    // What each shipped config documents: its bond model, cube edge, seeds per sand and free parameters.
     struct Shipped {
         const char* name;
         gradem::BondModel model;
         double edge;  // [m]
-        std::size_t seeds;
+        std::vector<std::size_t> seeds;  // per sand: pre-blended, Van Buren
         std::vector<std::string> free;
     };
     const std::vector<Shipped> shipped = {
-        {"joint.toml", gradem::BondModel::flat_joint, 3.5e-3, 3, {"effective_modulus_gpa", "tensile_strength_mpa"}},
-        {"joint_parallel_bond.toml", gradem::BondModel::parallel_bond, 3.5e-3, 3, {"effective_modulus_gpa", "tensile_strength_mpa", "bond_gap_um"}},
-        {"study.toml", gradem::BondModel::parallel_bond, 2.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
-        {"per_sand.toml", gradem::BondModel::parallel_bond, 2.5e-3, 2, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
+        {"joint.toml", gradem::BondModel::flat_joint, 3.5e-3, {2, 7}, {"effective_modulus_gpa", "tensile_strength_mpa"}},
+        {"joint_parallel_bond.toml", gradem::BondModel::parallel_bond, 3.5e-3, {3, 3}, {"effective_modulus_gpa", "tensile_strength_mpa", "bond_gap_um"}},
+        {"study.toml", gradem::BondModel::parallel_bond, 2.5e-3, {2, 2}, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
+        {"per_sand.toml", gradem::BondModel::parallel_bond, 2.5e-3, {2, 2}, {"effective_modulus_gpa", "tensile_strength_mpa", "cohesion_ratio", "strength_cv"}},
     };
     for (const Shipped& expected : shipped) {
         const char* name = expected.name;
@@ -176,7 +176,7 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
             CHECK(p.sands == std::vector<std::string>{"pre-blended", "Van Buren"});
             CHECK(p.solver.method == cal::Method::scaling);
             CHECK(p.bond_model() == expected.model);
-            CHECK(p.seeds.size() == expected.seeds);
+            for (std::size_t sand = 0; sand < p.sands.size(); ++sand) CHECK(p.seeds_of(sand).size() == expected.seeds.at(sand));
             CHECK(p.base.specimen.genesis.edge == Approx(expected.edge));
             const cal::ParameterSpace space(p.parameters, p.base.material);
             std::vector<std::string> free;
