@@ -476,7 +476,8 @@ def stage_notes(st, label_it):
 def packing_seeds_text(summary):
     """Every sand's seeds, or each sand's own list when they differ ("pre-blended: 1, 2; Van Buren: 1, 2, 3")."""
     by_sand = summary.get("packing_seeds_by_sand") or {}
-    lists = {sand: ", ".join(str(s) for s in seeds) for sand, seeds in by_sand.items()}
+    order = [sand for sand in summary.get("sands") or [] if sand in by_sand] or list(by_sand)
+    lists = {sand: ", ".join(str(s) for s in by_sand[sand]) for sand in order}
     if len(set(lists.values())) > 1:
         return "; ".join(f"{sand}: {seeds}" for sand, seeds in lists.items())
     return ", ".join(str(s) for s in summary.get("packing_seeds") or [])

@@ -184,6 +184,7 @@ def make_calibration(args, work):
 base = "{args.source}/experiments/configs/calibration_cube.toml"
 model = "analytic"
 mode = "joint"
+sand_seeds = {{ "Van Buren" = [1, 2, 3] }}
 [targets]
 lab_results = "{lab}/lab_results.json"
 [solver]
@@ -208,6 +209,7 @@ def case_calibrate(args, browser, work):
     text = open(page, encoding="utf-8").read()
     check("validation specimens, which the fit never saw" in text and "on the scale-up specimens" in text
           and "3.5 mm cubes, packing seeds 21" in text, f"{page}: no validation errors figure or scale-up caption")
+    check("pre-blended: 1, 2; Van Buren: 1, 2, 3" in text, f"{page}: the run table does not give each sand's own packing seeds")
     check_self_contained(page)
     return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["calibrate"], banner=True)
 
