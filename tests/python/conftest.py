@@ -39,13 +39,14 @@ def lab_results(targets):
     return {"schema": "gradem-lab-results/1", "representative_data": True, "note": "synthetic targets", "sands": sands}
 
 
-def write_problem(folder, targets, max_runs=30, seeds=(1, 2)):
-    """An analytic-stand-in calibration problem of the four default free parameters."""
+def write_problem(folder, targets, max_runs=30, seeds=(1, 2), calibration_keys=""):
+    """An analytic-stand-in calibration problem of the four default free parameters
+    (`calibration_keys`: more lines of its [calibration] table)."""
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "lab_results.json").write_text(json.dumps(lab_results(targets)))
     (folder / "problem.toml").write_text(
         f'[calibration]\nbase = "{SOURCE}/experiments/configs/calibration_cube.toml"\nmodel = "analytic"\n'
-        f"seeds = {list(seeds)}\n"
+        f"seeds = {list(seeds)}\n{calibration_keys}"
         '[targets]\nlab_results = "lab_results.json"\n'
         f'[solver]\nmax_runs = {max_runs}\n[output]\ndir = "out"\n')
     return folder / "problem.toml"

@@ -77,6 +77,20 @@ def test_model_runs_each_point_once(analytic_problem):
     assert len(gradem.Ledger(model.ledger)) == 4
 
 
+def test_model_gives_each_sand_its_own_seeds(tmp_path):
+    targets = {"pre-blended": (15000.0, 30.0, 0.003), "Van Buren": (13000.0, 25.0, 0.0031)}
+    own = gradem.Model(write_problem(tmp_path / "own", targets, calibration_keys='sand_seeds = { "Van Buren" = [1, 2, 3] }\n'))
+    plain = gradem.Model(write_problem(tmp_path / "plain", targets))
+    out, same = own(TRUTH), plain(TRUTH)
+    assert out["pre-blended"]["seeds"] == [1, 2] and out["Van Buren"]["seeds"] == [1, 2, 3]
+    assert out["pre-blended"]["peak_stress_mpa"].shape == (2,) and out["Van Buren"]["peak_stress_mpa"].shape == (3,)
+    assert own.runs_executed == 5
+    # Each sand's values are its own runs': seeds 1 and 2 give what the problem without the key gives.
+    for sand in SANDS:
+        assert np.array_equal(out[sand]["peak_stress_mpa"][:2], same[sand]["peak_stress_mpa"])
+    assert out["Van Buren"]["peak_stress_mpa"][2] not in out["Van Buren"]["peak_stress_mpa"][:2]
+
+
 def test_model_checks_the_parameters(analytic_problem):
     model = gradem.Model(analytic_problem)
     with pytest.raises(ValueError, match=r"'strength_cv' = 0.9 violates in \[0(\.0)?, 0.5\] \(its bounds in .*problem.toml\)"):
