@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -40,17 +41,25 @@ std::vector<std::string> read_strings(Section& s, const char* key, std::vector<s
     return out;
 }
 
+/// A seed list as written: into `out`, or what it should have been ("a non-empty array of
+/// positive integers", "distinct seeds").
+std::optional<std::string> parse_seed_list(const toml::node& n, std::vector<std::uint64_t>& out) {
+    const char* not_a_list = "a non-empty array of positive integers";
+    if (!n.is_array() || n.as_array()->empty()) return not_a_list;
+    for (const toml::node& item : *n.as_array()) {
+        if (!item.is_integer() || item.as_integer()->get() < 1) return not_a_list;
+        const auto v = static_cast<std::uint64_t>(item.as_integer()->get());
+        if (std::find(out.begin(), out.end(), v) != out.end()) return "distinct seeds";
+        out.push_back(v);
+    }
+    return std::nullopt;
+}
+
 std::vector<std::uint64_t> read_seeds(Section& s, const char* key, std::vector<std::uint64_t> fallback) {
     const toml::node* n = s.node(key);
     if (!n) return fallback;
-    if (!n->is_array() || n->as_array()->empty()) s.type_error(key, *n, "a non-empty array of positive integers");
     std::vector<std::uint64_t> out;
-    for (const toml::node& item : *n->as_array()) {
-        if (!item.is_integer() || item.as_integer()->get() < 1) s.type_error(key, *n, "a non-empty array of positive integers");
-        const auto v = static_cast<std::uint64_t>(item.as_integer()->get());
-        if (std::find(out.begin(), out.end(), v) != out.end()) s.type_error(key, *n, "distinct seeds");
-        out.push_back(v);
-    }
+    if (const auto expected = parse_seed_list(*n, out)) s.type_error(key, *n, *expected);
     s.record(key, *n, false);
     return out;
 }
@@ -69,17 +78,9 @@ void read_sand_seeds(Context& ctx, const toml::node& node, CalibrationProblem& p
         const auto at = std::find(p.sands.begin(), p.sands.end(), sand);
         const std::string where = "key 'calibration.sand_seeds.\"" + sand + "\"'";
         if (at == p.sands.end()) throw InputError(ctx.file, line_of(value), where + ": \"" + sand + "\" is not one of calibration.sands");
-        if (!value.is_array() || value.as_array()->empty())
-            throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected a non-empty array of positive integers");
         std::vector<std::uint64_t>& list = p.sand_seeds[static_cast<std::size_t>(at - p.sands.begin())];
-        for (const toml::node& item : *value.as_array()) {
-            if (!item.is_integer() || item.as_integer()->get() < 1)
-                throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected a non-empty array of positive integers");
-            const auto seed = static_cast<std::uint64_t>(item.as_integer()->get());
-            if (std::find(list.begin(), list.end(), seed) != list.end())
-                throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected distinct seeds");
-            list.push_back(seed);
-        }
+        if (const auto expected = parse_seed_list(value, list))
+            throw InputError(ctx.file, line_of(value), where + " = " + show(value) + ": expected " + *expected);
     }
 }
 
@@ -399,7 +400,7 @@ void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& 
             if (contains(p.seeds_of(sand), seed))
                 throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) + " is also a fitted seed of " +
                                                            p.sands[sand] + " (calibration." +
-                                                           (p.seeds_of(sand) == p.seeds ? std::string("seeds") : "sand_seeds") +
+                                                           (&p.seeds_of(sand) == &p.seeds ? std::string("seeds") : "sand_seeds") +
                                                            "): validation specimens must be unseen");
         if (contains(p.scale_up.seeds, seed))
             throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
@@ -542,9 +543,9 @@ int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) 
 }
 
 int CalibrationProblem::runs_per_test() const {
-    std::size_t n = 0;
-    for (std::size_t sand = 0; sand < sands.size(); ++sand) n += seeds_of(sand).size();
-    return static_cast<int>(n);
+    std::vector<std::size_t> all(sands.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    return runs_per_test(all);
 }
 
 std::string CalibrationProblem::describe() const {
