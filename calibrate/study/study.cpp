@@ -1,6 +1,7 @@
 // The study kinds (study_kind.hpp) on top of the calibration's Evaluator: every simulated
 // configuration ("case") is a set of parameter points run on every sand and seed, through the
 // study's own ledger.
+#include <algorithm>
 #include "calibrate/study/study.hpp"
 
 #include <chrono>
@@ -152,9 +153,32 @@ CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std:
         return evaluate(evaluator);
     }
     auto model = make_model(problem, test == CubeTest::tension);
-    model->prepare(problem.seeds, problem.workers, say);
+    model->prepare(problem.packing_seeds(), problem.workers, say);
     Evaluator evaluator(problem, space, *model, ledger, {}, test);
     return evaluate(evaluator);
+}
+
+/// The calibration's own packing seeds on a study problem made from it: its common list and
+/// each sand's own list ([calibration] sand_seeds), matched by sand name (the study may keep
+/// only some of the sands).
+void use_calibration_seeds(const CalibrationProblem& calibration, CalibrationProblem& problem) {
+    problem.seeds = calibration.seeds;
+    problem.sand_seeds.clear();
+    for (const std::string& sand : problem.sands) {
+        const auto it = std::find(calibration.sands.begin(), calibration.sands.end(), sand);
+        problem.sand_seeds.push_back(it == calibration.sands.end()
+                                         ? calibration.seeds
+                                         : calibration.seeds_of(static_cast<std::size_t>(it - calibration.sands.begin())));
+    }
+}
+
+/// An evaluation's runs split per sand: the evaluator runs each sand on its seeds in turn.
+std::vector<std::vector<RunOutcome>> runs_by_sand(const CalibrationProblem& problem, const std::vector<RunOutcome>& runs) {
+    std::vector<std::vector<RunOutcome>> out(problem.sands.size());
+    std::size_t r = 0;
+    for (std::size_t s = 0; s < problem.sands.size(); ++s)
+        for (std::size_t k = 0; k < problem.seeds_of(s).size() && r < runs.size(); ++k) out[s].push_back(runs[r++]);
+    return out;
 }
 
 }  // namespace
@@ -162,9 +186,9 @@ CaseRuns evaluate_case(const CalibrationProblem& problem, const std::vector<std:
 std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::vector<std::vector<double>>& points,
                                         const std::vector<std::string>& labels, const std::vector<double>& xs,
                                         const CaseOptions& options) {
-    const std::vector<std::uint64_t> own_seeds = problem.seeds;
+    const CalibrationProblem own = problem;
     problem = as_study_problem(std::move(problem), config_);
-    if (options.calibration_seeds) problem.seeds = own_seeds;
+    if (options.calibration_seeds) use_calibration_seeds(own, problem);
     if (planned_) {
         planned_->push_back({problem, points, labels.empty() ? "study" : labels.front(), options.test});
         problem.model = RunModel::analytic;
@@ -182,9 +206,7 @@ std::vector<StudyCase> StudyRunner::run(CalibrationProblem problem, const std::v
         c.x = k < xs.size() ? xs[k] : 0.0;
         c.sands = problem.sands;
         c.seeds = problem.seeds;
-        c.runs.assign(problem.sands.size(), {});
-        const std::size_t per_sand = problem.seeds.size();
-        for (std::size_t r = 0; r < evals[k].runs.size(); ++r) c.runs[r / per_sand].push_back(evals[k].runs[r]);
+        c.runs = runs_by_sand(problem, evals[k].runs);
         say(c.label + ": " + std::to_string(evals[k].runs.size()) + " runs, " + std::to_string(c.failed()) + " failed");
         cases.push_back(std::move(c));
     }

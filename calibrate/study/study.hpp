@@ -37,7 +37,8 @@ struct StudyCase {
     std::string label;
     double x = 0.0;                                ///< swept value (edge or min diameter [mm], step)
     std::vector<std::string> sands;
-    std::vector<std::uint64_t> seeds;              ///< the packing seeds of runs[sand][k]
+    std::vector<std::uint64_t> seeds;              ///< the packing seeds of runs[sand][k] (a calibration's sand with
+                                                   ///< seeds of its own, run on them: its sand_seeds list)
     std::vector<std::vector<RunOutcome>> runs;     ///< per sand, per seed
     [[nodiscard]] Sample sample(std::size_t sand, Quantity q) const;
     [[nodiscard]] double mean_particles(std::size_t sand) const;

@@ -28,12 +28,13 @@ void plan_case(const PlannedCase& c, double probe_seconds, StudyPlan& plan) {
     const CalibrationProblem& problem = c.problem;
     const ParameterSpace space(problem.parameters, problem.base.material);
     const exp::MaterialParams material = space.material(c.points.front());
-    const int runs = static_cast<int>(c.points.size() * problem.seeds.size());
-    const RunCounts counts = c.test == CubeTest::tension ? RunCounts{0, runs} : RunCounts{runs, 0};
-    const PlannedSpecimens set{c.label, problem.base, problem.seeds};
-    for (std::size_t s = 0; s < problem.sands.size(); ++s)
+    const PlannedSpecimens set{c.label, problem.base, problem.packing_seeds()};
+    for (std::size_t s = 0; s < problem.sands.size(); ++s) {
+        const int runs = static_cast<int>(c.points.size() * problem.seeds_of(s).size());
+        const RunCounts counts = c.test == CubeTest::tension ? RunCounts{0, runs} : RunCounts{runs, 0};
         plan.runs.push_back(plan_runs(problem, set, s, material, counts, probe_seconds, plan.specimens));
-    (c.test == CubeTest::tension ? plan.tension_runs : plan.compression_runs) += runs * static_cast<int>(problem.sands.size());
+        (c.test == CubeTest::tension ? plan.tension_runs : plan.compression_runs) += runs;
+    }
 }
 
 }  // namespace

@@ -13,6 +13,9 @@
 # calibrated parameters), named <folder>_<sand>:
 #   CALIBRATIONS="out/calibration-joint-paste-pb-gap out/calibration-joint-paste" \
 #       OMP_NUM_THREADS=2 sh experiments/studies/paste_cost.sh out/paste-cost-calibrated
+# EDGE_MM=<mm> runs each calibrated config on cubes of that edge instead of its own (a copy in
+# OUT with [genesis] edge_mm replaced; the case name ends in _<edge>mm): calibrations fitted on
+# different cube sizes compared per cube test of one size.
 set -eu
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 OUT=${1:-$ROOT/out/paste-cost}
@@ -42,6 +45,11 @@ if [ -n "${CALIBRATIONS:-}" ]; then
         for cfg in "$dir"/calibrated-*.toml; do
             [ -f "$cfg" ] || { echo "paste_cost: no calibrated-<sand>.toml in $dir (run its calibration first)" >&2; exit 2; }
             name=$(basename "$dir")_$(basename "$cfg" .toml | sed 's/^calibrated-//')
+            if [ -n "${EDGE_MM:-}" ]; then
+                name=${name}_${EDGE_MM}mm
+                sed -e "s|^edge_mm = .*|edge_mm = $EDGE_MM|" "$cfg" > "$OUT/$name.toml"
+                cfg=$OUT/$name.toml
+            fi
             run_case "$name" "$cfg"
             CASES="$CASES|$name"
         done

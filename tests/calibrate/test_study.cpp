@@ -26,11 +26,11 @@ const std::vector<std::string> kSands = {"pre-blended", "Van Buren"};
 
 /// A calibrated analytic problem in `dir`: lab targets from the stand-in at the base material,
 /// a short scaling calibration, its summary.json in dir/cal. Returns the summary path.
-fs::path calibrated_summary(const fs::path& dir) {
+fs::path calibrated_summary(const fs::path& dir, const std::string& calibration_keys = "") {
     auto model = cal::make_analytic_model(kSands.size());
     const exp::MaterialParams base = exp::load_cube_config(test::calibration_base_config()).material;
     test::write_text(dir / "lab_results.json", test::synthetic_lab_results(*model, kSands, base, {101, 102, 103, 104}).dump(1));
-    const fs::path toml = test::write_problem(dir, "model = \"analytic\"\nseeds = [1, 2]\n",
+    const fs::path toml = test::write_problem(dir, "model = \"analytic\"\nseeds = [1, 2]\n" + calibration_keys,
                                               "[solver]\nmax_runs = 30\n[output]\ndir = \"" + (dir / "cal").string() + "\"\n");
     const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
     auto m = cal::make_model(problem);
@@ -251,6 +251,7 @@ TEST_CASE("study: model_form tabulates calibrations with their shape index, sigm
         CHECK(cost["wall_seconds_per_run"].get<double>() > 0.0);
         CHECK(cost["particle_steps_per_second"].get<double>() * cost["wall_seconds_per_run"].get<double>() == Approx(1000.0));
         CHECK(row["targets_met"].get<int>() >= 0);
+        CHECK(row["validation"]["modulus_error"].is_null());  // the calibration has no [validation]
     }
     // The table and the written files carry the new columns.
     const auto& header = r.tables.front().header;
@@ -266,6 +267,57 @@ TEST_CASE("study: model_form tabulates calibrations with their shape index, sigm
     CHECK(again.runs_executed == 0);
     CHECK(again.runs_from_ledger == 4);
     CHECK(again.data["models"][0]["sands"][0]["compressive_to_tensile_ratio"] == model["sands"][0]["compressive_to_tensile_ratio"]);
+}
+
+TEST_CASE("study: model_form runs each sand's tension tests on the calibration's own seeds of that sand, "
+          "its validation errors apart",
+          "[calibrate][study][seeds]") {
+    TempDir dir("study-model-form-sand-seeds");
+    const fs::path summary = calibrated_summary(dir.path, "sand_seeds = { \"Van Buren\" = [1, 2, 3, 5] }\n");
+    // Rows of validation specimens, as a calibration with [validation] writes them after the
+    // fitted ones: reported apart, never mixed into the fitted errors or σc.
+    nlohmann::json sj;
+    std::ifstream(summary) >> sj;
+    const nlohmann::json fitted = sj["targets"];
+    for (nlohmann::json row : fitted) {
+        row["role"] = "validation";
+        row["rel_error"] = 0.5;
+        row["sim_mean"] = 3.0 * row["sim_mean"].get<double>();
+        sj["targets"].push_back(row);
+    }
+    test::write_text(summary, sj.dump(1));
+    const fs::path toml = write_study(dir.path, "kind = \"model_form\"\ncalibrations = [\"" + summary.string() + "\"]");
+    const cal::StudyResult r = cal::run_study(cal::load_study_config(toml));
+    CHECK(r.runs_executed == 2 + 4);
+    REQUIRE(r.cases.size() == 1);
+    REQUIRE(r.cases[0].runs.size() == 2);
+    CHECK(r.cases[0].runs[0].size() == 2);
+    CHECK(r.cases[0].runs[1].size() == 4);
+
+    // Oracle: each sand's σt is the stand-in's mean over that sand's own seeds, as the
+    // calibration's simulated peak (σc) is: σc/σt compares the same specimens.
+    const cal::CalibratedPoint cp = cal::load_calibrated_point(summary);
+    const exp::MaterialParams m = cal::ParameterSpace(cp.problem.parameters, cp.problem.base.material).material(cp.values);
+    const auto tension = cal::make_analytic_model(kSands.size(), 0.003, 0.0);
+    const std::vector<std::vector<std::uint64_t>> seeds = {{1, 2}, {1, 2, 3, 5}};
+    for (std::size_t s = 0; s < kSands.size(); ++s) {
+        INFO(kSands[s]);
+        double sum = 0.0;
+        for (std::uint64_t seed : seeds[s]) sum += tension->run({s, seed, m, cal::CubeTest::tension}, 0.0).peak_pa;
+        const auto& row = r.data["models"][0]["sands"][s];
+        const double sigma_t = sum / static_cast<double>(seeds[s].size());
+        CHECK(row["tensile_strength_mpa"]["n"] == static_cast<int>(seeds[s].size()));
+        CHECK(row["tensile_strength_mpa"]["mean"].get<double>() == Approx(sigma_t * 1e-6).epsilon(1e-12));
+        for (const auto& t : fitted) {
+            if (t["sand"] != kSands[s]) continue;
+            if (t["quantity"] == "modulus") CHECK(row["modulus_error"] == t["rel_error"]);
+            if (t["quantity"] == "peak_stress")
+                CHECK(row["compressive_to_tensile_ratio"].get<double>() ==
+                      Approx(t["sim_mean"].get<double>() * 1e6 / sigma_t).epsilon(1e-12));
+        }
+        CHECK(row["validation"]["modulus_error"] == 0.5);
+        CHECK(row["validation"]["strain_error"] == 0.5);
+    }
 }
 
 TEST_CASE("study: sigma_c/sigma_t and cost per cube test from known inputs", "[calibrate][study]") {

@@ -1,6 +1,7 @@
 // The model_form study: which bond model fits the lab best? The calibrations of several bond
 // models (or representations) of study.calibrations side by side: per model and sand the error
-// against the lab on the three targets (met within target_tolerance.hpp's tolerances or not),
+// against the lab on the three targets on the fitted specimens (met within target_tolerance.hpp's
+// tolerances or not) and, where the calibration has [validation], on its validation specimens,
 // the shape index D = E ε_peak / σ_peak, σc/σt from the direct-tension test at the calibrated
 // parameters (the calibration's sands, seeds and base cube; through the study's ledger, so a
 // rerun repeats no test), and the cost per cube test from the calibration's ledger
@@ -43,6 +44,12 @@ std::vector<RunCost> calibration_run_costs(const CalibratedPoint& cp, const json
 
 std::string pct_text(double v) { return std::isfinite(v) ? fmt_num(100 * v, 3) + " %" : "-"; }
 
+/// The errors on the calibration's validation specimens, "-" without them.
+std::string validation_text(const double (&err)[3]) {
+    if (!std::isfinite(err[0]) && !std::isfinite(err[1]) && !std::isfinite(err[2])) return "-";
+    return pct_text(err[0]) + " / " + pct_text(err[1]) + " / " + pct_text(err[2]);
+}
+
 /// What a model's sands add up to: its worst target error, whether every target is met, and
 /// its σc/σt per sand as text.
 struct ModelTally {
@@ -56,12 +63,19 @@ void add_model_sand(const CalibratedPoint& cp, const json& j, std::size_t s, con
                     const std::vector<RunCost>& costs, StudyTable& table, json& model, ModelTally& tally) {
     const std::filesystem::path& file = cp.summary;
     const std::string& sand = cp.problem.sands[s];
-    double err[3] = {NAN, NAN, NAN}, sim[3] = {NAN, NAN, NAN}, lab[3] = {NAN, NAN, NAN};
+    // The fitted specimens' rows (σt runs on them); a summary with [validation] also has rows
+    // of its validation specimens, kept apart.
+    double err[3] = {NAN, NAN, NAN}, sim[3] = {NAN, NAN, NAN}, lab[3] = {NAN, NAN, NAN}, validation[3] = {NAN, NAN, NAN};
     for (const json& r : j.at("targets")) {
         if (r.value("sand", "") != sand) continue;
+        const bool validation_row = r.value("role", "fitted") == "validation";
         for (Quantity q : kQuantities)
             if (r.value("quantity", "") == to_string(q)) {
                 const int k = static_cast<int>(q);
+                if (validation_row) {
+                    validation[k] = common::number_or_nan(r, "rel_error");
+                    continue;
+                }
                 err[k] = common::number_or_nan(r, "rel_error");
                 sim[k] = common::number_or_nan(r, "sim_mean");
                 lab[k] = common::number_or_nan(r, "lab_mean");
@@ -78,11 +92,13 @@ void add_model_sand(const CalibratedPoint& cp, const json& j, std::size_t s, con
     tally.ratio_text += (tally.ratio_text.empty() ? "" : ", ") + sand + " " + fmt_num(ratio, 3);
     table.rows.push_back({{cp.bond_model, file.parent_path().filename().string(), std::to_string(j.value("dem_test_runs", 0)),
                        fmt_num(j.value("wall_seconds", 0.0), 4), sand, pct_text(err[0]), pct_text(err[1]), pct_text(err[2]),
-                       std::to_string(met) + " of 3", fmt_num(d_sim, 3), fmt_num(d_lab, 3),
+                       std::to_string(met) + " of 3", validation_text(validation), fmt_num(d_sim, 3), fmt_num(d_lab, 3),
                        mean_pm(sigma_t.mean * 1e-6, sigma_t.std * 1e-6, 3) + " (n " + std::to_string(sigma_t.n) + ")",
                        fmt_num(ratio, 3), fmt_num(cost.mean_wall_seconds, 3), fmt_num(cost.particle_steps_per_second, 3)}});
     model["sands"].push_back({{"sand", sand}, {"modulus_error", number(err[0])}, {"peak_error", number(err[1])},
                           {"strain_error", number(err[2])}, {"targets_met", met},
+                          {"validation", {{"modulus_error", number(validation[0])}, {"peak_error", number(validation[1])},
+                                          {"strain_error", number(validation[2])}}},
                           {"shape_index_sim", number(d_sim)}, {"shape_index_lab", number(d_lab)},
                           {"peak_compression_mpa", number(sim[1])},
                           {"tensile_strength_mpa", {{"mean", number(sigma_t.mean * 1e-6)}, {"std", number(sigma_t.std * 1e-6)},
@@ -96,7 +112,7 @@ void run(const std::vector<CalibratedPoint>& calibrations, StudyRunner& runner, 
     StudyTable t{"Calibrated models side by side (errors: simulated / lab - 1; cost: the calibration's compression runs, "
                  "wall time with its other runs in flight)",
                  {"model", "summary", "DEM runs", "wall s", "sand", "modulus error", "peak error", "strain error", "targets met",
-                  "D sim", "D lab", "sigma_t MPa", "sigma_c/sigma_t", "wall s/run", "particle-steps/s"},
+                  "validation: modulus / peak / strain error", "D sim", "D lab", "sigma_t MPa", "sigma_c/sigma_t", "wall s/run", "particle-steps/s"},
                  {}};
     json models = json::array();
     double best_score = 1e300;
