@@ -35,14 +35,24 @@ def add_figures(page, data, cases, path):
     page.section("The models side by side", "Each model's own calibration against the same lab targets.")
     fig, axes = new_figure(max(1, len(sands)), width=11.0, height=3.8)
     w = 0.8 / max(1, len(models))
+    shown_validation = False
     for ax, sand in zip(axes, sands or [None]):
+        labelled = False  # one legend entry for the validation markers
         if sand is None:
             message_panel(ax, "no models")
             continue
         for k, (m, label) in enumerate(zip(models, names)):
             s = next((s for s in m.get("sands") or [] if s.get("sand") == sand), {})
             err = [100 * finite(s.get(f"{q.split('_')[0]}_error")) for q, _, _ in QUANTITIES]
-            ax.bar(np.arange(3) - 0.4 + w * (k + 0.5), np.nan_to_num(err), width=w * 0.9, color=MODEL_COLORS[k % 5], label=label)
+            x = np.arange(3) - 0.4 + w * (k + 0.5)
+            ax.bar(x, np.nan_to_num(err), width=w * 0.9, color=MODEL_COLORS[k % 5], label=label)
+            v = s.get("validation") or {}
+            val = [100 * finite(v.get(f"{q.split('_')[0]}_error")) for q, _, _ in QUANTITIES]
+            if any(e == e for e in val):  # the calibration's validation specimens (NaN: none)
+                shown_validation = True
+                ax.plot(x, val, "D", color="black", mfc="white", ms=6, mew=1.5,
+                        label=None if labelled else "validation specimens")
+                labelled = True
         for q, (key, _, _) in enumerate(QUANTITIES):  # each target's own tolerance (calibrate/target_tolerance.hpp)
             tol = 100 * finite(tolerances.get(key, 0.05))
             ax.fill_between([q - 0.45, q + 0.45], -tol, tol, color="#009E73", alpha=0.12, lw=0)
@@ -52,9 +62,10 @@ def add_figures(page, data, cases, path):
         ax.set_title(sand)
     axes[0].legend(loc="best")
     page.figure(to_svg(fig), "Target errors per model and sand",
-                "Relative error (simulated / lab − 1) of each target at each model's calibrated parameters; green band: the "
-                "target's tolerance (" + ", ".join(f"{n} ± {fmt(100 * finite(tolerances.get(k, 0.05)), 3)} %"
-                                                   for k, n, _ in QUANTITIES) + ").")
+                "Relative error (simulated / lab − 1) of each target at each model's calibrated parameters on its fitted "
+                "specimens" + ("; white diamonds: on its validation specimens (larger cubes, unseen seeds)" if shown_validation else "") +
+                "; green band: the target's tolerance (" + ", ".join(f"{n} ± {fmt(100 * finite(tolerances.get(k, 0.05)), 3)} %"
+                                                                    for k, n, _ in QUANTITIES) + ").")
     fig, (ax, bars) = new_figure(2, width=11.0, height=4.0)
     lo, hi = math.inf, -math.inf
     for k, (m, label) in enumerate(zip(models, names)):

@@ -245,6 +245,8 @@ def case_study(args, browser, work):
         text = open(page, encoding="utf-8").read()
         check(verdict and all(html.escape(v.replace(" -> ", " → ")) in text for v in verdict),
               f"{page}: the study's verdict is not on the page")
+        if kind == "model_form":  # the calibration has [validation]: its errors there, beside the fitted ones
+            check("white diamonds: on its validation specimens" in text, f"{page}: no validation errors in the target figure")
         # The study pages are shorter than the others: a 2000-px window keeps the blank check fair.
         this = check_page_in_browser(browser, page, work, figures, banner=True, height=2000)
         if kind == "gradation_effect":
