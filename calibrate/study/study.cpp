@@ -1,9 +1,9 @@
 // The study kinds (study_kind.hpp) on top of the calibration's Evaluator: every simulated
 // configuration ("case") is a set of parameter points run on every sand and seed, through the
 // study's own ledger.
-#include <algorithm>
 #include "calibrate/study/study.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>

@@ -3,8 +3,8 @@
 // against the lab on the three targets on the fitted specimens (met within target_tolerance.hpp's
 // tolerances or not) and, where the calibration has [validation], on its validation specimens,
 // the shape index D = E ε_peak / σ_peak, σc/σt from the direct-tension test at the calibrated
-// parameters (the calibration's sands, seeds and base cube; through the study's ledger, so a
-// rerun repeats no test), and the cost per cube test from the calibration's ledger
+// parameters (the calibration's sands, each sand's own seeds and base cube; through the study's
+// ledger, so a rerun repeats no test), and the cost per cube test from the calibration's ledger
 // (docs/calibration.md "Studies").
 #include <algorithm>
 #include <cmath>
