@@ -50,10 +50,10 @@ struct JointLanes {
     double scale[kJointLanes], radius[kJointLanes], kn[kJointLanes], ks[kJointLanes];
     double strength[kJointLanes], cohesion[kJointLanes], tan_phi[kJointLanes];
     double shear[kMaxLaneElements][2][kJointLanes];  ///< F_s,e in (t1, t2): in, then out [N]
-    // inputs of joints not fully bonded: elements' bonded flags (1/0), g_0 [m], μ_r, the
-    // surface gap beyond which a separated joint is released [m]
+    // inputs of joints not fully bonded: elements' bonded flags (1/0), g_0 [m], μ_r, ρ (the
+    // unbonded elements' share of k̄_n), the surface gap beyond which a separated joint is released [m]
     double bonded[kMaxLaneElements][kJointLanes];
-    double gap0[kJointLanes], friction[kJointLanes], release_gap[kJointLanes];
+    double gap0[kJointLanes], friction[kJointLanes], unbonded_kn[kJointLanes], release_gap[kJointLanes];
     // the frame and step constants after this step's increments
     double t1[3][kJointLanes], t2[3][kJointLanes], n[3][kJointLanes], arm_b[3][kJointLanes];
     double wy[kJointLanes], wz[kJointLanes], w_norm[kJointLanes], gap[kJointLanes], bend_total[3][kJointLanes];
@@ -191,7 +191,7 @@ __attribute__((always_inline)) inline void mixed_normal(JointLanes& L, std::size
         const bool open = !closed & (gap - spread >= 0.0);
         // the linear stress: bonded at its opening, or unbonded and closed at its gap (else none)
         const bool loaded = bonded | closed;
-        const NormalLoad load = linear_normal(g, f, js.kn, js.R, bonded ? t.opening : gap);
+        const NormalLoad load = linear_normal(g, f, bonded ? js.kn : js.kn * L.unbonded_kn[l], js.R, bonded ? t.opening : gap);
         const bool fails = lane_element_fails(L, l, g, js, load, t);
         const bool cut = !bonded & !closed & !open;
         L.el_fn[e][l] = loaded ? load.fn : 0.0;
@@ -219,7 +219,7 @@ inline void cut_elements(JointLanes& L, std::span<const DiscElement> elements) {
         for (std::size_t e = 0; e < elements.size(); ++e) {
             if (L.el_cut[e][l] == 0.0) continue;
             const ElementTrial t = element_trial(elements[e], f, js, L.shear[e][0][l], L.shear[e][1][l]);
-            const NormalLoad load = unbonded_normal(elements[e], f, js.kn, js.R, L.gap0[l] + t.opening,
+            const NormalLoad load = unbonded_normal(elements[e], f, js.kn * L.unbonded_kn[l], js.R, L.gap0[l] + t.opening,
                                                     L.gap0[l] + f.normal, zero_line);
             L.el_fn[e][l] = load.fn;
             L.el_p1[e][l] = load.p1;
@@ -533,7 +533,7 @@ struct FlatJointPass {
         L.tan_phi[l] = contexts[b.family_pair].tan_phi;
     }
 
-    /// Lane l of a joint not fully bonded: its elements' bonded flags, g_0, μ_r, release gap.
+    /// Lane l of a joint not fully bonded: its elements' bonded flags, g_0, μ_r, ρ, release gap.
     __attribute__((always_inline)) inline void load_interface(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
         using namespace flat_side;
         const double* side = side_data + static_cast<std::size_t>(k) * stride;
@@ -541,6 +541,7 @@ struct FlatJointPass {
         L.gap0[l] = side[initial_gap];
         L.release_gap[l] = side[release_gap];
         L.friction[l] = contexts[b.family_pair].friction;
+        L.unbonded_kn[l] = contexts[b.family_pair].unbonded_kn;
     }
 
     /// A joint whose lane took the law's common path (no element failed or was cut, nothing

@@ -28,6 +28,7 @@ inline constexpr Range positive{0.0, kInf, true, false};        ///< > 0
 inline constexpr Range non_negative{0.0, kInf, false, false};   ///< >= 0
 inline constexpr Range unit_open_right{0.0, 1.0, false, true};  ///< in [0, 1)
 inline constexpr Range unit_closed{0.0, 1.0, false, false};     ///< in [0, 1]
+inline constexpr Range unit_open_left{0.0, 1.0, true, false};   ///< in (0, 1]
 inline constexpr Range flag{0.0, 1.0, false, false};            ///< a yes/no as 0/1
 }  // namespace ranges
 

@@ -70,11 +70,18 @@ struct TargetRow {
     bool met = false;
 };
 
+/// Sand s's outcome on the specimens of a target row's role (fitted, predicted, scale-up, validation).
+const SandOutcome* role_outcome(const CalibrationStage& st, std::size_t s, const std::string& role) {
+    if (role == "validation") return st.validation_outcome(s);
+    if (role == "scale-up") return st.scaled_outcome(s);
+    return st.outcome(s);
+}
+
 std::vector<TargetRow> target_rows(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<TargetRow> rows;
     auto add = [&](std::size_t s, const char* role) {
         const std::string r = role;
-        const SandOutcome* o = r == "validation" ? st.validation_outcome(s) : r == "scale-up" ? st.scaled_outcome(s) : st.outcome(s);
+        const SandOutcome* o = role_outcome(st, s, r);
         for (Quantity q : p.fitted_quantities()) {
             TargetRow r{st.label, p.sands[s], role, q, target_of(p.targets[s], q), std::nan(""), std::nan(""), 0, std::nan(""), std::nan("")};
             if (o && o->count(q) > 0) {
@@ -242,7 +249,7 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
         if (r.q == Quantity::strain) {
             const std::size_t si = static_cast<std::size_t>(std::find(p.sands.begin(), p.sands.end(), r.sand) - p.sands.begin());
             const SandTargets& t = p.targets[si];
-            const SandOutcome* so = st.outcome(si);
+            const SandOutcome* so = role_outcome(st, si, r.role);  // D on the row's own specimens
             if (so) {
                 const double d_sim = shape_index(so->value(Quantity::modulus), so->value(Quantity::peak), so->value(Quantity::strain));
                 const double d_lab = shape_index(t.modulus.mean, t.peak.mean, t.strain.mean);

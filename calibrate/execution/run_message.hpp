@@ -24,7 +24,7 @@
 
 namespace gradem::cal::wire {
 
-inline constexpr std::uint32_t kProtocolVersion = 6;  // 6: a bond law's fields written from its parameter rows
+inline constexpr std::uint32_t kProtocolVersion = 7;  // 7: the flat joint's unbonded_stiffness_ratio; 6: a bond law's fields written from its parameter rows
 
 enum class Kind : std::uint8_t { hello = 1, prepare = 2, prepared = 3, run = 4, result = 5, stop = 6 };
 constexpr EnumNameTable<Kind, 6> enum_name_table(Kind) {

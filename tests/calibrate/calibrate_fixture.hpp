@@ -71,14 +71,16 @@ inline nlohmann::json synthetic_lab_results(const cal::CubeModel& model, const s
 /// (so the strain at peak × strength/modulus), as a larger, better converged cube differs from a small one.
 class ScaledSpecimenModel final : public cal::CubeModel {
 public:
-    ScaledSpecimenModel(double modulus_factor, double strength_factor)
-        : inner_(cal::make_analytic_model(2, 0.001)), modulus_(modulus_factor), strength_(strength_factor) {}
+    /// E x modulus_factor, peak x strength_factor, strain at peak x strength/modulus x shape_factor
+    /// (the shape index D = E eps / sigma x shape_factor).
+    ScaledSpecimenModel(double modulus_factor, double strength_factor, double shape_factor = 1.0)
+        : inner_(cal::make_analytic_model(2, 0.001)), modulus_(modulus_factor), strength_(strength_factor), shape_(shape_factor) {}
     void prepare(const cal::PackingSeeds&, int, const std::function<void(const std::string&)>&) override {}
     cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
         cal::RunOutcome o = inner_->run(q, t);
         o.modulus_pa *= modulus_;
         o.peak_pa *= strength_;
-        o.strain_at_peak *= strength_ / modulus_;
+        o.strain_at_peak *= strength_ / modulus_ * shape_;
         return o;
     }
     std::string fingerprint() const override { return inner_->fingerprint() + "; scaled"; }
@@ -86,7 +88,7 @@ public:
 
 private:
     std::unique_ptr<cal::CubeModel> inner_;
-    double modulus_, strength_;
+    double modulus_, strength_, shape_;
 };
 
 inline void write_text(const std::filesystem::path& p, const std::string& text) {

@@ -13,7 +13,7 @@ namespace {
 std::uint64_t run_with_threads(int threads, std::size_t& breaks,
                                BondModel model = BondModel::parallel_bond, bool mixed_joints = false,
                                const SimParams& sim = SimParams{}, EnergyLedger* energy = nullptr,
-                               StepProfile* profile = nullptr) {
+                               StepProfile* profile = nullptr, double unbonded_stiffness_ratio = 1.0) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #else
@@ -34,6 +34,7 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
         bp.law<FlatJointLaw>().gap_ratio = 0.01;
         bp.law<FlatJointLaw>().stiffness_over_gap = true;
         bp.friction_angle_deg = 25.0;
+        bp.law<FlatJointLaw>().unbonded_stiffness_ratio = unbonded_stiffness_ratio;
     }
     world.install_bonds(bp, 0.5e-3);
     add_platens(world, 0.3);
@@ -73,7 +74,7 @@ TEST_CASE("state after N steps hashes the same with 1, 2 and 3 threads", "[core]
 }
 
 TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "[core][determinism]") {
-    struct Case { BondModel model; bool mixed; std::uint64_t hash; std::size_t breaks; };
+    struct Case { BondModel model; bool mixed; std::uint64_t hash; std::size_t breaks; double rho = 1.0; };
     // Pinned like the parallel bond's hash above: a change here must be a deliberate change of
     // that law's arithmetic, stated where the pin moves. The flat joint's moved when its broken
     // joints became interfaces (compression, friction, bending through the compressed part) and
@@ -90,14 +91,17 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
     // 12065608508480324370 / 1233 (mixed).
     const Case cases[] = {{BondModel::soft_bond, false, 8519285268406297533ULL, 1562},
                           {BondModel::flat_joint, false, 3070257782853112384ULL, 3967},
-                          {BondModel::flat_joint, true, 7668072492877913840ULL, 2131}};
+                          {BondModel::flat_joint, true, 7668072492877913840ULL, 2131},
+                          // the mixed joints with their unbonded elements closing at 0.4 k_n
+                          // (FlatJointParams::unbonded_stiffness_ratio; the rows above keep 1)
+                          {BondModel::flat_joint, true, 3020977463338649710ULL, 1782, 0.4}};
     for (const Case& c : cases) {
         const BondModel model = c.model;
-        INFO(bond_model_name(model) << (c.mixed ? " (bonded, gapped and slit)" : ""));
+        INFO(bond_model_name(model) << (c.mixed ? " (bonded, gapped and slit)" : "") << " rho " << c.rho);
         std::size_t b1 = 0, b2 = 0, b3 = 0;
-        const std::uint64_t h1 = run_with_threads(1, b1, model, c.mixed);
-        const std::uint64_t h2 = run_with_threads(2, b2, model, c.mixed);
-        const std::uint64_t h3 = run_with_threads(3, b3, model, c.mixed);
+        const std::uint64_t h1 = run_with_threads(1, b1, model, c.mixed, SimParams{}, nullptr, nullptr, c.rho);
+        const std::uint64_t h2 = run_with_threads(2, b2, model, c.mixed, SimParams{}, nullptr, nullptr, c.rho);
+        const std::uint64_t h3 = run_with_threads(3, b3, model, c.mixed, SimParams{}, nullptr, nullptr, c.rho);
         REQUIRE(b1 > 0);  // bonds really softened or broke
         CHECK(h1 == h2);
         CHECK(h1 == h3);
@@ -113,20 +117,23 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
 
 // The vectorised pass over flat joints (core/flat_joint_pass.cpp) against the law's scalar
 // kernel for every joint: the same state bits, break count and every energy term, on
-// bonded-only and on mixed joints (slit, gapped, a friction angle), past the first breaks; and
+// bonded-only and on mixed joints (slit, gapped, a friction angle; unbonded elements at the
+// bonded k_n and at 0.4 of it), past the first breaks; and
 // the pass's count of its paths: the lanes take every joint but one with an element that breaks
 // in the step (the mixed specimen's joints are 40 % unbonded from the start: theirs too, with
 // the elements the zero line cuts), the scalar kernel those few.
 TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[core][determinism]") {
-    for (const bool mixed : {false, true}) {
-        INFO((mixed ? "bonded, gapped and slit" : "bonded"));
+    const std::pair<bool, double> joint_sets[] = {{false, 1.0}, {true, 1.0}, {true, 0.4}};
+    for (const auto& [mixed, rho] : joint_sets) {
+        INFO((mixed ? "bonded, gapped and slit" : "bonded") << ", rho " << rho);
         SimParams scalar;
         scalar.vectorised_bond_passes = false;
         std::size_t b_vec = 0, b_scalar = 0;
         EnergyLedger e_vec, e_scalar;
         StepProfile p_vec, p_scalar;
-        const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec, &p_vec);
-        const std::uint64_t h_scalar = run_with_threads(2, b_scalar, BondModel::flat_joint, mixed, scalar, &e_scalar, &p_scalar);
+        const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec, &p_vec, rho);
+        const std::uint64_t h_scalar =
+            run_with_threads(2, b_scalar, BondModel::flat_joint, mixed, scalar, &e_scalar, &p_scalar, rho);
         // every acting joint-step counted once, by the path that took it
         CHECK(p_scalar.bond_lane_steps == 0);
         CHECK(p_vec.bond_lane_steps + p_vec.bond_scalar_steps == p_scalar.bond_scalar_steps);

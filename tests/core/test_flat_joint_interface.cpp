@@ -15,9 +15,10 @@ using namespace gradem::test;
 
 namespace {
 
-BondParams slit_joint(std::int32_t nr, std::int32_t na) {
+BondParams slit_joint(std::int32_t nr, std::int32_t na, double unbonded_stiffness_ratio = 1.0) {
     BondParams bp = joint(nr, na);
     bp.law<FlatJointLaw>().bonded_fraction = 0.0;
+    bp.law<FlatJointLaw>().unbonded_stiffness_ratio = unbonded_stiffness_ratio;
     return bp;
 }
 
@@ -165,16 +166,19 @@ TEST_CASE("flat joint: an element's compressed part is the exact integral over t
 }
 
 // A bonded joint pressed to σ and sheared breaks when τ = c̄ + |σ| tan φ̄ (all elements at
-// once: uniform stresses); broken and closed, it then slides at |F_s| = μ_r |F_n|, and it
-// still acts (an interface, not a released bond).
+// once: uniform stresses); broken and closed, it then carries ρ σ A at the same closure (ρ:
+// the unbonded elements' share of k̄_n) and slides at |F_s| = μ_r |F_n|, and it still acts (an
+// interface, not a released bond).
 TEST_CASE("flat joint: the friction angle adds |sigma| tan(phi) to the shear strength, broken and closed, "
           "the joint slides at mu_r N", "[core][flat_joint]") {
-    for (double phi_deg : {0.0, 30.0}) {
-        INFO("phi " << phi_deg);
+    const std::pair<double, double> cases[] = {{0.0, 1.0}, {30.0, 1.0}, {0.0, 0.45}};
+    for (const auto& [phi_deg, rho] : cases) {
+        INFO("phi " << phi_deg << " rho " << rho);
         BondParams bp = joint(1, 4);
         bp.cohesion_mean = 4.0e6;
         bp.tensile_strength_mean = 2.0e6;
         bp.friction_angle_deg = phi_deg;
+        bp.law<FlatJointLaw>().unbonded_stiffness_ratio = rho;
         BondRig rig(bp);
         const double sigma = -5.0e6;  // [Pa], compression
         press(rig, -sigma / rig.stiffness.normal, 200);
@@ -203,24 +207,25 @@ TEST_CASE("flat joint: the friction angle adds |sigma| tan(phi) to the shear str
         for (int s = 0; s < 300; ++s) rig.world.step();
         CHECK(bond_acts(rig.bond()));
         const double normal = rig.bond().normal_force;
-        CHECK(normal == Approx(sigma * rig.section.area).epsilon(2e-3));
+        CHECK(normal == Approx(rho * sigma * rig.section.area).epsilon(2e-3));
         CHECK(norm(rig.bond().shear_force) == Approx(0.5 * std::fabs(normal)).epsilon(1e-9));
         CHECK(rig.world.energy().friction > 0.0);
     }
 }
 
 // A slit joint (unbonded, no initial gap) pressed by δ0 and bent by θ: gap g = -δ0 + θ z over
-// the disc; the compressed part z < δ0/θ carries σ = k_n g. Normal force and moment against
+// the disc; the compressed part z < δ0/θ carries σ = ρ k_n g. Normal force and moment against
 // the circular-segment integrals, from fully closed to mostly open, for several layouts.
 TEST_CASE("flat joint: an unbonded joint resists bending through its compressed part, as the hand "
           "integral over the disc", "[core][flat_joint]") {
-    const std::pair<int, int> layouts[] = {{1, 1}, {1, 4}, {2, 6}, {3, 8}};
-    for (const auto& [nr, na] : layouts) {
-        INFO("N_r " << nr << " N_a " << na);
-        BondRig rig(slit_joint(nr, na), 0.0);
+    struct Layout { int nr, na; double rho; };  // rho: the unbonded elements' share of k_n
+    const Layout layouts[] = {{1, 1, 1.0}, {1, 4, 1.0}, {2, 6, 1.0}, {3, 8, 1.0}, {1, 4, 0.3}, {3, 8, 0.3}};
+    for (const auto& [nr, na, rho] : layouts) {
+        INFO("N_r " << nr << " N_a " << na << " rho " << rho);
+        BondRig rig(slit_joint(nr, na, rho), 0.0);
         REQUIRE(rig.bond().state == BondState::none);
         REQUIRE(bond_acts(rig.bond()));
-        const double kn = rig.stiffness.normal, R = rig.section.radius, depth = 1.0e-6;
+        const double kn = rho * rig.stiffness.normal, R = rig.section.radius, depth = 1.0e-6;
         press(rig, depth, 100);
         const double w = 3.7, per_step = 2.0 * w * rig.dt;
         const int steps = static_cast<int>(depth / (0.15 * R) / per_step);  // to c = 0.15
@@ -274,39 +279,44 @@ TEST_CASE("flat joint: a gapped joint carries nothing until its initial gap clos
 }
 
 // A joint broken in tension stays an interface while the pair is within the installation
-// reach: closed again it carries compression (k_n A δ); once every element is open and the
-// surfaces are beyond the reach it is released (no longer acting).
+// reach: closed again it carries compression (ρ k_n A δ, ρ the unbonded elements' share of
+// k_n); once every element is open and the surfaces are beyond the reach it is released (no
+// longer acting).
 TEST_CASE("flat joint: a joint broken in tension recloses in compression, and is released once its "
           "surfaces separate beyond the installation reach", "[core][flat_joint]") {
-    BondParams bp = joint(1, 4);
-    bp.tensile_strength_mean = 2.0e6;
-    const double reach = 2.0e-6;
-    BondRig rig(bp, kRigGap, reach);
-    const double per_step = bp.tensile_strength_mean / rig.stiffness.normal / 500.5;
-    rig.set_motion({per_step / rig.dt, 0, 0}, {});
-    for (int s = 0; s < 600; ++s) rig.world.step();
-    REQUIRE(rig.bond().state == BondState::broken_tension);
-    CHECK(rig.bond().interface == 1);
-    CHECK(rig.bond().normal_force == 0.0);
-    // Back through the installed position into compression.
-    rig.set_motion({-per_step / rig.dt, 0, 0}, {});
-    for (int s = 0; s < 1200; ++s) rig.world.step();
-    const double delta = rig.opening();
-    REQUIRE(delta < 0.0);
-    CHECK(rig.bond().normal_force == Approx(rig.stiffness.normal * rig.section.area * delta).epsilon(1e-6));
-    // Apart beyond the reach: released.
-    rig.set_motion({10 * per_step / rig.dt, 0, 0}, {});
-    int released = 0;
-    for (int s = 1; s <= 2000 && bond_acts(rig.bond()); ++s) {
-        rig.world.step();
-        if (!bond_acts(rig.bond())) released = s;
+    for (const double rho : {1.0, 0.25}) {
+        INFO("rho " << rho);
+        BondParams bp = joint(1, 4);
+        bp.tensile_strength_mean = 2.0e6;
+        bp.law<FlatJointLaw>().unbonded_stiffness_ratio = rho;
+        const double reach = 2.0e-6;
+        BondRig rig(bp, kRigGap, reach);
+        const double per_step = bp.tensile_strength_mean / rig.stiffness.normal / 500.5;
+        rig.set_motion({per_step / rig.dt, 0, 0}, {});
+        for (int s = 0; s < 600; ++s) rig.world.step();
+        REQUIRE(rig.bond().state == BondState::broken_tension);
+        CHECK(rig.bond().interface == 1);
+        CHECK(rig.bond().normal_force == 0.0);
+        // Back through the installed position into compression.
+        rig.set_motion({-per_step / rig.dt, 0, 0}, {});
+        for (int s = 0; s < 1200; ++s) rig.world.step();
+        const double delta = rig.opening();
+        REQUIRE(delta < 0.0);
+        CHECK(rig.bond().normal_force == Approx(rho * rig.stiffness.normal * rig.section.area * delta).epsilon(1e-6));
+        // Apart beyond the reach: released.
+        rig.set_motion({10 * per_step / rig.dt, 0, 0}, {});
+        int released = 0;
+        for (int s = 1; s <= 2000 && bond_acts(rig.bond()); ++s) {
+            rig.world.step();
+            if (!bond_acts(rig.bond())) released = s;
+        }
+        REQUIRE(released > 0);
+        const double gap_at_release = rig.rest_distance + rig.opening() - 2.0 * kRigRadius;
+        CHECK(gap_at_release > reach);
+        CHECK(gap_at_release < reach + 10 * per_step * 1.01);
+        CHECK(rig.bond().interface == 0);
+        CHECK(rig.bond().state == BondState::broken_tension);
     }
-    REQUIRE(released > 0);
-    const double gap_at_release = rig.rest_distance + rig.opening() - 2.0 * kRigRadius;
-    CHECK(gap_at_release > reach);
-    CHECK(gap_at_release < reach + 10 * per_step * 1.01);
-    CHECK(rig.bond().interface == 0);
-    CHECK(rig.bond().state == BondState::broken_tension);
 }
 
 // k̄_n of a joint installed across a gap g: Ē*/(R_A + R_B + g) with stiffness_over_gap, the

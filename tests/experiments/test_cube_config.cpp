@@ -266,12 +266,14 @@ TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macr
         const CubeConfig c = load_cube_config(write_file(dir.path / "f.toml", "[specimen]\nsieve_csv = \"sand.csv\"\n[material]\n"
                                                                        "model = \"flat_joint\"\nradial_elements = 2\n"
                                                                        "angular_elements = 3\nresidual_friction = 0.6\n"
+                                                                       "unbonded_stiffness_ratio = 0.35\n"
                                                                        "bond_replaces_contact = false\n"));
         CHECK(c.material.bond.model == BondModel::flat_joint);
         CHECK_FALSE(c.material.bond.replaces_contact);
         CHECK(c.material.bond.law<FlatJointLaw>().radial_elements == 2);
         CHECK(c.material.bond.law<FlatJointLaw>().angular_elements == 3);
         CHECK(c.material.bond.law<FlatJointLaw>().residual_friction == 0.6);
+        CHECK(c.material.bond.law<FlatJointLaw>().unbonded_stiffness_ratio == 0.35);
         const auto j = nlohmann::json::parse(macro_json(CubeTestResult{}, c, Packing{}, 1.0))["material"];
         CHECK(j["si"]["flat_joint"]["angular_elements"] == 3);
         CHECK_FALSE(j["display"].contains("softening_factor"));
@@ -327,6 +329,8 @@ TEST_CASE("bad bond model keys name the file, line, key and what is allowed", "[
                  {"bonded_fraction = 1.2", "key 'material.bonded_fraction' = 1.2 violates in [0, 1]"},
                  {"gapped_fraction = -0.1", "key 'material.gapped_fraction' = -0.1 violates in [0, 1]"},
                  {"gap_ratio = -0.01", "key 'material.gap_ratio' = -0.01 violates >= 0"},
+                 {"unbonded_stiffness_ratio = 0", "key 'material.unbonded_stiffness_ratio' = 0 violates in (0, 1]"},
+                 {"unbonded_stiffness_ratio = 1.5", "key 'material.unbonded_stiffness_ratio' = 1.5 violates in (0, 1]"},
                  {"friction_angle_deg = 90", "key 'material.friction_angle_deg' = 90 violates in [0, 90)"},
                  {"stiffness_over_gap = 1", "key 'material.stiffness_over_gap' = 1: expected true or false"}}) {
             write_file(file, config_with("material", "model = \"flat_joint\"\n" + line));
