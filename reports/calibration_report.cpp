@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "calibrate/objective.hpp"
+#include "calibrate/rescaling.hpp"
 #include "calibrate/target_tolerance.hpp"
 #include "common/atomic_file.hpp"
 #include "reports/calibrated_config.hpp"
@@ -241,18 +242,26 @@ double outcome_shape_index(const SandOutcome& o) {
 
 double lab_shape_index(const SandTargets& t) { return shape_index(t.modulus.mean, t.peak.mean, t.strain.mean); }
 
-/// Why a fitted strain at peak misses: the model's D on the fitted specimens against the lab's.
+/// Why a fitted strain at peak misses: the model's D on the fitted specimens against the lab's,
+/// and what could have moved it. The scales cannot (homogeneity: E × α, peak × β, strain × β/α
+/// keep D), so a law's D is what its shape parameters make it: searched when some are free,
+/// as the problem fixes them otherwise; with a strain weight of 0 the strain is reported, not fitted.
 std::string fitted_strain_miss(const CalibrationProblem& p, const CalibrationStage& st, std::size_t si) {
     const SandOutcome* so = st.outcome(si);
     if (!so) return "";
     const double d_sim = outcome_shape_index(*so), d_lab = lab_shape_index(p.targets[si]);
-    const bool brittle = p.bond_model() == BondModel::parallel_bond;
     std::ostringstream s;
-    s << ". The model cannot meet it: its shape index D = E·ε/σ is " << fmt(d_sim, 3) << " against the lab's " << fmt(d_lab, 3)
-      << (brittle ? " - bonded-particle specimens are near-linear (brittle) to the peak, so with E and peak matched"
-                  : std::string(" - with the ") + bond_model_name(p.bond_model()) + " law's shape parameters found and E and peak matched,")
-      << " the strain at peak is D_sim/D_lab = " << pct(d_sim / d_lab - 1.0)
-      << " off; this is the best compromise the weights allow (model-form error, not an optimiser failure)";
+    s << ". The model cannot meet it: its shape index D = E·ε/σ is " << fmt(d_sim, 3) << " against the lab's " << fmt(d_lab, 3);
+    if (p.bond_model() == BondModel::parallel_bond)
+        s << " - bonded-particle specimens are near-linear (brittle) to the peak, so with E and peak matched";
+    else if (split_by_role(ParameterSpace(p.parameters, p.base.material)).shape.empty())
+        s << " - with the " << bond_model_name(p.bond_model())
+          << " law's shape parameters as the problem fixes them (none is free; the scales cannot move D) and E and peak matched,";
+    else
+        s << " - with the " << bond_model_name(p.bond_model()) << " law's shape parameters found and E and peak matched,";
+    s << " the strain at peak is D_sim/D_lab = " << pct(d_sim / d_lab - 1.0) << " off; ";
+    if (p.weights.strain > 0.0) s << "this is the best compromise the weights allow (model-form error, not an optimiser failure)";
+    else s << "the strain weight is 0, so it is reported, not fitted (model-form error, not an optimiser failure)";
     return s.str();
 }
 

@@ -138,3 +138,33 @@ TEST_CASE("bad [validation] tables are refused naming the key, line and rule", "
     refused("[validation]\nedge_mm = 5.0\n", "'validation.seeds' is required");
     refused("[validation]\nseeds = [11]\nedges = 5.0\n", "unknown key 'validation.edges'");
 }
+
+// A fitted strain-at-peak miss with every shape parameter fixed and the strain weight 0 (as in
+// the main job): the scales cannot move D, so the statement says the shape is fixed and the
+// strain reported, not fitted; it does not call the miss a compromise of the weights.
+TEST_CASE("a fitted strain-at-peak miss with the shape fixed is reported, not called a compromise", "[calibrate][validation]") {
+    TempDir dir("cal-fixed-shape");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    test::write_text(dir.path / "lab_results.json",
+                     test::synthetic_lab_results(*plain, kSands, truth_material(), {101, 102, 103, 104, 105, 106}).dump(1));
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(test::write_problem(
+        dir.path, "model = \"analytic\"\nbond_model = \"flat_joint\"\nseeds = [1, 2, 3]\n",
+        "strain_weight = 0.0\n[solver]\nmethod = \"scaling\"\nmax_runs = 300\ntolerance = 0.002\n"
+        "[parameters.cohesion_ratio]\nfree = false\nstart = 2.0\n[parameters.strength_cv]\nfree = false\nstart = 0.2\n"
+        "[output]\ndir = \"out\"\n"));
+    test::ScaledSpecimenModel bent(1.0, 1.0, 1.3);  // D x 1.3 against the lab's, E and peak as the lab's model
+    const cal::CalibrationResult r = cal::run_calibration(problem, bent);
+    const nlohmann::json summary = report::summary_json(problem, r);
+    int strain_misses = 0;
+    for (const auto& u : summary["stages"][0]["unmet_targets"]) {
+        const std::string text = u.get<std::string>();
+        if (text.find("strain at peak (fitted)") == std::string::npos) continue;
+        ++strain_misses;
+        CHECK_THAT(text, Catch::Contains("as the problem fixes them (none is free"));
+        CHECK_THAT(text, Catch::Contains("the strain weight is 0, so it is reported, not fitted"));
+        CHECK_THAT(text, !Catch::Contains("best compromise"));
+    }
+    CHECK(strain_misses == 2);
+    for (const auto& t : summary["targets"])  // the scales still meet E and peak
+        if (t["quantity"] != "strain_at_peak") CHECK(std::fabs(t["rel_error"].get<double>()) < 0.05);
+}
