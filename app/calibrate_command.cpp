@@ -40,18 +40,13 @@ struct CalibrateOptions {
 };
 
 /// The progress line: rewritten in place on a terminal, one line per run otherwise. The ETA
-/// follows the plan's model (calibrate/plan.hpp): the runs still expected on the solver's path
-/// (`expected` fitted runs, then the validation runs) at the mean run time so far, `workers`
-/// at a time; the budget's remaining runs give the upper bound.
+/// (cal::eta_seconds) follows the plan's model (calibrate/plan.hpp): the runs still expected on
+/// the solver's path, then the validation runs weighted by their cubes' grains, at the mean run
+/// time so far, `workers` at a time; the budget's remaining runs give the upper bound.
 void print_progress(const cal::Progress& p, const cal::ExpectedRuns& expected) {
     std::FILE* notes = console().notes();
     const bool tty = isatty(fileno(notes)) != 0;
-    const int left = std::max(0, std::min(p.max_runs, std::max(expected.fitted, p.runs_used)) - p.runs_used) + expected.validation;
-    const int left_max = p.max_runs - p.runs_used + expected.validation;
-    const double per_run = p.mean_run_s / std::max(1, p.workers);
-    // No run timed yet (all from the ledger): no estimate.
-    const double eta = p.mean_run_s > 0.0 ? per_run * left : std::nan("");
-    const double eta_max = p.mean_run_s > 0.0 ? per_run * left_max : std::nan("");
+    const double eta = cal::eta_seconds(p, expected), eta_max = cal::eta_seconds(p, expected, true);
     std::fprintf(notes, "%scalibrate: runs %d/%d (%d from ledger)  evaluations %d  best objective %.4g  elapsed %s  ETA %s (<= %s)%s",
                  tty ? "\r" : "", p.runs_used, p.max_runs, p.from_ledger, p.evaluations, p.best_objective,
                  clock_text(p.elapsed_s).c_str(), clock_text(eta).c_str(), clock_text(eta_max).c_str(), tty ? "   " : "\n");

@@ -262,7 +262,18 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     dry.workers = 1;
     const auto model = make_model(dry);
     const CalibrationResult r = run_calibration(dry, *model);
-    return {r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
+    ExpectedRuns e{r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
+    const double fitted_edge = problem.base.specimen.genesis.edge;
+    if (problem.validation.edge > 0.0 && fitted_edge > 0.0) e.validation_run_weight = std::pow(problem.validation.edge / fitted_edge, 3);
+    return e;
+}
+
+double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper) {
+    if (p.mean_run_s <= 0.0) return std::nan("");
+    const int path_left = std::max(0, std::min(p.max_runs, std::max(e.fitted, p.runs_used)) - p.runs_used);
+    const int fitted_left = upper ? p.max_runs - p.runs_used : path_left;
+    const double runs_left = fitted_left + e.validation * e.validation_run_weight;
+    return p.mean_run_s / std::max(1, p.workers) * runs_left;
 }
 
 CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds) {

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibrate/evaluator.hpp"
 #include "calibrate/problem.hpp"
 
 namespace gradem::cal {
@@ -84,8 +85,16 @@ struct CalibrationPlan : PlanCost {
 /// runs, scale-up runs}.
 struct ExpectedRuns {
     int fitted = 0, evaluations = 0, validation = 0, scale_up = 0;
+    /// A validation run's cost over a fitted run's: the grains of their cubes, which the same
+    /// gradation fills, (validation edge / fitted edge)³ [-].
+    double validation_run_weight = 1.0;
 };
 ExpectedRuns expected_runs(const CalibrationProblem& problem);
+
+/// The progress line's ETA [s]: the runs still expected on the solver's path (`upper`: the
+/// budget's remaining runs instead), then the validation runs at their weight, at the mean run
+/// time so far, `workers` at a time. NaN while no run has been timed (all from the ledger).
+double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper = false);
 
 /// The plan of `problem` (steps 1-5 above). Throws what the run would throw for bad input.
 CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds = 2.0);

@@ -10,6 +10,7 @@
 #include "calibrate_fixture.hpp"
 #include "experiments/virtual_tests/cube_specimen.hpp"
 #include "experiments/virtual_tests/cube_test.hpp"
+#include "experiments/specimen/grain_sampler.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 
 namespace fs = std::filesystem;
@@ -54,6 +55,52 @@ TEST_CASE("plan: the expected runs are the calibration's own on the analytic sta
     CHECK(expected.validation == 2 * 2);  // one stage, two sands, two validation seeds
     CHECK(expected.fitted > 2 * 3);       // more than the start point
     CHECK(expected.fitted <= 40);
+}
+
+// A validation run on larger cubes costs what their grains cost: the ETA counts it as
+// (validation edge / fitted edge)^3 fitted runs, the ratio of the grains genesis samples for
+// the two cubes of the same gradation.
+TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains", "[calibrate][plan]") {
+    TempDir dir("cal-plan-eta");
+    auto truth_model = cal::make_analytic_model(2, 0.001);
+    test::write_text(dir.path / "lab_results.json",
+                     test::synthetic_lab_results(*truth_model, kSands, test::material_at({20.0, 12.0, 1.6, 0.25}), {101, 102, 103})
+                         .dump(1));
+    const auto problem_with = [&](const std::string& validation) {
+        return cal::load_calibration_problem(test::write_problem(
+            dir.path, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
+            "[solver]\nmax_runs = 40\n" + validation + "[output]\ndir = \"out\"\n"));
+    };
+    const cal::CalibrationProblem larger = problem_with("[validation]\nedge_mm = 3.75\nseeds = [21]\n");
+    const cal::CalibrationProblem same = problem_with("[validation]\nseeds = [21]\n");
+    const cal::ExpectedRuns e = cal::expected_runs(larger);
+    const double fitted_edge = larger.base.specimen.genesis.edge;
+    CHECK(e.validation_run_weight == Approx(std::pow(3.75e-3 / fitted_edge, 3)));
+    CHECK(cal::expected_runs(same).validation_run_weight == 1.0);
+
+    // The weight is the grains' ratio: genesis fills each cube with grains of the same curve.
+    exp::CubeConfig config = larger.base;
+    config.sand = kSands[0];
+    const lab::GradationCurve curve = exp::load_gradation(config);
+    const exp::SpecimenSpec& spec = config.specimen;
+    const auto grains = [&](double edge) {
+        return static_cast<double>(
+            exp::sample_grains(curve, spec.size_rule, spec.genesis.target_solid_fraction * edge * edge * edge, 21).diameters.size());
+    };
+    CHECK(grains(3.75e-3) / grains(fitted_edge) == Approx(e.validation_run_weight).epsilon(0.05));
+
+    // After 6 of 26 expected runs at 30 s each on 2 workers: 20 fitted runs and the validation's.
+    cal::Progress p;
+    p.runs_used = 6;
+    p.max_runs = 40;
+    p.mean_run_s = 30.0;
+    p.workers = 2;
+    cal::ExpectedRuns path = e;
+    path.fitted = 26;
+    CHECK(cal::eta_seconds(p, path) == Approx(15.0 * (20 + path.validation * e.validation_run_weight)));
+    CHECK(cal::eta_seconds(p, path, true) == Approx(15.0 * (34 + path.validation * e.validation_run_weight)));
+    p.mean_run_s = 0.0;  // every run so far from the ledger: no estimate
+    CHECK(std::isnan(cal::eta_seconds(p, path)));
 }
 
 TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the runs it plans", "[calibrate][plan]") {
