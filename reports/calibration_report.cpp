@@ -140,6 +140,12 @@ bool validation_holds(const std::vector<TargetRow>& rows) {
 /// E ε / σ: the shape index the homogeneity leaves to the shape parameters.
 double shape_index(double e, double sigma, double eps) { return e * eps / sigma; }
 
+/// D of a sand's seed means, and of its lab means.
+double outcome_shape_index(const SandOutcome& o) {
+    return shape_index(o.value(Quantity::modulus), o.value(Quantity::peak), o.value(Quantity::strain));
+}
+double lab_shape_index(const SandTargets& t) { return shape_index(t.modulus.mean, t.peak.mean, t.strain.mean); }
+
 /// D = E·ε_peak/σ_peak of a sand: the lab's (from its means) and the simulated one (seed means
 /// at the calibrated parameters; NaN if the sand has no successful run).
 struct ShapeIndexRow {
@@ -150,10 +156,7 @@ struct ShapeIndexRow {
 std::vector<ShapeIndexRow> shape_index_rows(const CalibrationProblem& p, const CalibrationStage& st) {
     std::vector<ShapeIndexRow> rows;
     auto add = [&](std::size_t s, const char* role, const SandOutcome* o) {
-        const SandTargets& t = p.targets[s];
-        rows.push_back({p.sands[s], role, shape_index(t.modulus.mean, t.peak.mean, t.strain.mean),
-                        o && o->ok > 0 ? shape_index(o->value(Quantity::modulus), o->value(Quantity::peak), o->value(Quantity::strain))
-                                       : std::nan("")});
+        rows.push_back({p.sands[s], role, lab_shape_index(p.targets[s]), o && o->ok > 0 ? outcome_shape_index(*o) : std::nan("")});
     };
     for (std::size_t s : st.fitted) add(s, "fitted", st.outcome(s));
     for (std::size_t s : st.predicted) add(s, "predicted", st.outcome(s));
@@ -235,12 +238,6 @@ std::string tension_unmet_statement(const CalibrationProblem& p, const TargetRow
              "limit, which a law with unbonded (slit or gapped) interfaces addresses (docs/bond_laws.md)";
     return s.str();
 }
-
-double outcome_shape_index(const SandOutcome& o) {
-    return shape_index(o.value(Quantity::modulus), o.value(Quantity::peak), o.value(Quantity::strain));
-}
-
-double lab_shape_index(const SandTargets& t) { return shape_index(t.modulus.mean, t.peak.mean, t.strain.mean); }
 
 /// Why a fitted strain at peak misses: the model's D on the fitted specimens against the lab's,
 /// and what could have moved it. The scales cannot (homogeneity: E × α, peak × β, strain × β/α

@@ -33,14 +33,19 @@ fs::path write_tiny_base(const fs::path& dir, const std::string& material = "") 
     return dir / "base.toml";
 }
 
+/// lab_results.json of both sands from the analytic stand-in at a known material.
+void write_analytic_lab(const fs::path& dir) {
+    auto truth_model = cal::make_analytic_model(2, 0.001);
+    test::write_text(dir / "lab_results.json",
+                     test::synthetic_lab_results(*truth_model, kSands, test::material_at({20.0, 12.0, 1.6, 0.25}), {101, 102, 103})
+                         .dump(1));
+}
+
 }  // namespace
 
 TEST_CASE("plan: the expected runs are the calibration's own on the analytic stand-in, and nothing is written", "[calibrate][plan]") {
     TempDir dir("cal-plan-analytic");
-    auto truth_model = cal::make_analytic_model(2, 0.001);
-    test::write_text(dir.path / "lab_results.json",
-                     test::synthetic_lab_results(*truth_model, kSands, test::material_at({20.0, 12.0, 1.6, 0.25}), {101, 102, 103})
-                         .dump(1));
+    write_analytic_lab(dir.path);
     const fs::path toml = test::write_problem(dir.path, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
                                               "strain_weight = 1.0\n[solver]\nmax_runs = 40\n[validation]\nseeds = [21, 22]\n"
                                               "[output]\ndir = \"out\"\n");
@@ -62,10 +67,7 @@ TEST_CASE("plan: the expected runs are the calibration's own on the analytic sta
 // the two cubes of the same gradation.
 TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains", "[calibrate][plan]") {
     TempDir dir("cal-plan-eta");
-    auto truth_model = cal::make_analytic_model(2, 0.001);
-    test::write_text(dir.path / "lab_results.json",
-                     test::synthetic_lab_results(*truth_model, kSands, test::material_at({20.0, 12.0, 1.6, 0.25}), {101, 102, 103})
-                         .dump(1));
+    write_analytic_lab(dir.path);
     const auto problem_with = [&](const std::string& validation) {
         return cal::load_calibration_problem(test::write_problem(
             dir.path, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
