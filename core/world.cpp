@@ -229,7 +229,7 @@ std::size_t World::memory_bytes() const {
     return bytes(p.position) + bytes(p.velocity) + bytes(p.spin) + bytes(p.force) +
            bytes(p.torque) + bytes(p.radius) + bytes(p.mass) + bytes(p.inertia) + bytes(p.flags) +
            bytes(pairs_) + bytes(pair_out_) + bytes(incidence_start_) + bytes(incidence_) +
-           bytes(bonds_) + bytes(bond_side_) + bytes(bond_const_) + bytes(bond_stored_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
+           bytes(bonds_) + bytes(pair_batches_) + bytes(bond_side_) + bytes(bond_const_) + bytes(bond_stored_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
            bytes(position_at_rebuild_);
 }
 
@@ -244,6 +244,7 @@ void fnv_mix(std::uint64_t& h, const void* data, std::size_t size) {
 }  // namespace
 
 std::uint64_t World::state_hash() const {
+    records_current();
     std::uint64_t h = 1469598103934665603ull;
     for (std::size_t i = 0; i < particles_.size(); ++i) {
         fnv_mix(h, &particles_.position[i], sizeof(Vec3));

@@ -23,6 +23,7 @@
 #include "core/bond_law.hpp"
 #include "core/bond_pass.hpp"
 #include "core/neighbor_search.hpp"
+#include "core/pair_batch.hpp"
 #include "core/params.hpp"
 #include "core/particles.hpp"
 #include "core/wall.hpp"
@@ -68,7 +69,10 @@ public:
 
     // --- queries ------------------------------------------------------------------------
     [[nodiscard]] const ParticleSet& particles() const { return particles_; }
-    [[nodiscard]] const std::vector<ParallelBond>& bonds() const { return bonds_; }
+    [[nodiscard]] const std::vector<ParallelBond>& bonds() const {
+        records_current();
+        return bonds_;
+    }
     /// Law-specific side state of bond k (empty for the parallel bond); decode it with the
     /// law's header (its state decoder).
     [[nodiscard]] std::span<const double> bond_side_state(std::size_t k) const {
@@ -137,6 +141,12 @@ private:
     /// Strain energy of each bond after the latest step [J] (0 once broken), summed per bond
     /// block by the fused pair pass so the sum keeps the bond-order rounding (world_pairs.cpp).
     std::vector<double> bond_stored_;
+    /// The parallel bond's pass state in structure-of-arrays batches (core/pair_batch.hpp):
+    /// current while the pair list, the bonds and their constants are unchanged; while it is,
+    /// the contact shear forces and intact bonds' forces in pairs_ and bonds_ may lag behind it.
+    std::vector<PairBatch> pair_batches_;
+    bool pair_batches_current_ = false;
+    bool records_behind_batches_ = false;
     bool bond_const_stale_ = true;
     std::size_t bond_side_stride_ = 0;   ///< 0 for laws without side state (parallel bond)
     std::vector<Wall> walls_;
@@ -180,6 +190,14 @@ private:
     /// Phases 2 and 3 in one pass for the parallel bond (world_pairs.cpp); returns the bond
     /// energies, the contact strain and slip energies through `strain` and `slip`.
     BondEnergy compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip);
+    void build_pair_batches();
+    /// Brings pairs_' shear forces and bonds_' forces and moments up to the batches (world_pairs.cpp).
+    void write_back_pair_batches();
+    /// The same for const queries: the records are a cache of the batches' state then, so
+    /// bringing them up to date changes nothing a caller can observe.
+    void records_current() const {
+        if (records_behind_batches_) const_cast<World*>(this)->write_back_pair_batches();
+    }
     struct ParallelBondPass;  ///< its steps, one pair block at a time (world_pairs.cpp)
     friend struct ParallelBondPass;
     /// The World's state for a law's own pass over every bond (Law::compute_all, bond_pass.hpp).

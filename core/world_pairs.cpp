@@ -19,18 +19,21 @@
 //   - break events: per pair block in pair order, merged in block order = bond order.
 // Laws whose bond replaces the contact keep the two separate phases (world_step.cpp, world_bonds.cpp).
 //
-// Vectorised across pairs: each block of pairs is cut into batches of kLanes; a scalar scan
-// copies the inputs of the pairs that need work into structure-of-arrays lanes (overlapping
-// pairs in one set, open bonded pairs in another), one loop runs the kinematics, contact and
-// bond arithmetic over the lanes (branch-free kernels, compiled for AVX-512, AVX2
-// and for the baseline ISA with function multiversioning), and a scalar pass writes the results
-// back in pair order. Each lane does the same IEEE operations in the same order as the scalar
-// code (-ffp-contract=off: no FMA; no reassociation), so the results are bitwise the same.
+// Vectorised across pairs, in place: the pairs' contact and bond state lives in
+// structure-of-arrays batches of kPairLanes pairs (core/pair_batch.hpp). Per batch, as a list
+// of steps: a scalar loop copies the lanes' particles into lanes (and tests which pairs
+// overlap); one branch-free loop (compiled for AVX-512, AVX2 and the baseline ISA with function
+// multiversioning) runs the kinematics, the contact law (only if some pair of the batch
+// overlaps) and the bond law on every lane, writes the new contact and bond state back into the
+// batch, and the pair's force and moment, selected by what acts (overlap, an intact bond), into
+// a result row; a scalar loop copies the results into the pair output slots and sums the
+// energies in pair order; the breaks (rare) are handled pair by pair. Each lane does the same
+// IEEE operations in the same order as the scalar code (-ffp-contract=off: no FMA; no
+// reassociation), and a select keeps exactly the value the separate phases stored, so the
+// results are bitwise the same.
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <memory>
-#include <type_traits>
 
 #include "core/contact_law.hpp"
 #include "core/parallel.hpp"
@@ -40,94 +43,192 @@
 namespace gradem {
 namespace {
 
-constexpr int kLanes = 32;
-constexpr std::int64_t kPrefetchAhead = 16;  ///< pairs: particle j's state (a random access)
-constexpr std::int64_t kStreamAhead = 32;    ///< pairs: the pair's bond, constants and output slot
-// The streams are prefetched only when the pass's arrays outgrow a last-level cache
-// (SimParams::stream_prefetch_above_bytes: the development machine's L3, 32 MiB; sysconf
-// reports the host's 384 MiB there). In cache the prefetches are extra instructions (-1..2 % at
-// N = 2e4, 14 MB); from memory they save 14 % of the pass (N = 2e5, 125 MB).
+constexpr int kLanes = kPairLanes;
 
-/// Inputs and results of up to kLanes pairs, one array per scalar (structure of arrays).
-struct Lanes {
-    int count = 0;
-    std::int64_t pair[kLanes];     ///< pair index
-    std::int32_t bond[kLanes];     ///< bond index, -1: not bonded
-    // inputs: the pair's particles, the stored contact shear force, the bond (bonded lanes)
-    double xa[3][kLanes], xb[3][kLanes], va[3][kLanes], vb[3][kLanes], wa[3][kLanes], wb[3][kLanes];
-    double ra[kLanes], rb[kLanes];
-    double shear[3][kLanes];
-    double fn[kLanes], fs[3][kLanes], mt[kLanes], mb[3][kLanes];
-    double strength[kLanes], cohesion[kLanes], radius[kLanes], inv_radius[kLanes];
-    double kn[kLanes], ks[kLanes], tan_phi[kLanes], beta[kLanes];
-    // results: contact (shear force, output force and torque on j, energies) ...
-    double c_shear[3][kLanes], c_force[3][kLanes], c_torque[3][kLanes], c_strain[kLanes], c_slip[kLanes];
-    // ... and bond (advanced state, failure code, peak stresses, energy, force and torque on j)
-    double failure[kLanes], tensile[kLanes], shear_stress[kLanes], energy[kLanes];
-    double b_force[3][kLanes], b_torque[3][kLanes];
+/// The particle arrays the kernel reads (restrict: the kernel writes none of them).
+struct ParticleArrays {
+    const Vec3* __restrict position;
+    const Vec3* __restrict velocity;
+    const Vec3* __restrict spin;
+    const double* __restrict radius;
 };
 
-/// v = +0 without a store when it already is +0 (bit for bit): an open pair's stored shear force
-/// stays zero step after step, and a pair record that is not written is not written back to
-/// memory (40 B per pair and step at N = 2e5, where the pass is limited by memory traffic).
-inline void clear_shear(Vec3& v) {
-    if ((std::bit_cast<std::uint64_t>(v.x) | std::bit_cast<std::uint64_t>(v.y) | std::bit_cast<std::uint64_t>(v.z)) != 0)
-        v = {};
-}
+/// The particles of a batch's lanes (structure of arrays), copied in before the kernel: the
+/// vectoriser emulates gathers from the particle arrays by scalar loads and inserts inside the
+/// vector loop, which costs more than this copy.
+struct BatchParticles {
+    double xa[3][kLanes], xb[3][kLanes], va[3][kLanes], vb[3][kLanes], wa[3][kLanes], wb[3][kLanes];
+    double ra[kLanes], rb[kLanes];
+};
 
+/// What the kernel hands the scalar loops for one batch: the pair's force and moment on j
+/// (contact and bond, as they act), which parts act, the energies, and the bond's failure code
+/// and peak stresses (breaks only).
+struct BatchResults {
+    double force[3][kLanes], torque[3][kLanes];  ///< [N], [N m]
+    double open[kLanes];                         ///< 1: the pair does not overlap
+    double contact_strain[kLanes], contact_slip[kLanes];  ///< [J], 0 when open
+    double failure[kLanes];                      ///< BondState of an intact bond after the step; intact without one
+    double tensile[kLanes], shear_stress[kLanes];  ///< σ̄, τ̄ [Pa]
+    double bond_energy[kLanes];                  ///< [J]
+};
+
+constexpr double kIntact = static_cast<double>(static_cast<int>(BondState::intact));
+
+// Component by component: an aggregate load or store of a Vec3 blocks the vectoriser.
 inline Vec3 lane(const double (&a)[3][kLanes], int l) { return {a[0][l], a[1][l], a[2][l]}; }
+
 inline void set_lane(double (&a)[3][kLanes], int l, const Vec3& v) {
     a[0][l] = v.x;
     a[1][l] = v.y;
     a[2][l] = v.z;
 }
 
-/// The arithmetic of compute_contacts() (WithContact) and of ParallelBondLaw::step() for every
-/// lane; the caller keeps the results it needs.
-template <bool WithContact>
-__attribute__((always_inline, flatten)) inline void pair_lanes_body(Lanes& L, double dt, double e_contact, double ratio_contact,
-                            double friction) {
-    const int n = L.count;
+/// What to prefetch while a batch is loaded, a little per lane (prefetched in bursts, the lines
+/// filled the miss queue and stalled the loop): the batch after the next one, the part of it the
+/// kernel reads (its arrays lie 128-256 bytes apart, a pattern the hardware prefetcher does not
+/// follow), and the next batch's particles j (random accesses: pairs are sorted by i, so i
+/// streams and the hardware does not prefetch j).
+struct BatchAhead {
+    const char* batch;       ///< the batch after the next (or a nearer one at the end: harmless)
+    int lines_per_lane = 0;  ///< 64-byte lines of it per lane
+    const PairBatch* next;   ///< the next batch (or this one at the end: harmless)
+    int next_count = 0;      ///< its pairs
+};
+
+/// Lane l's share of the prefetches.
+__attribute__((always_inline)) inline void prefetch_ahead(const BatchAhead& ahead, int l, const ParticleArrays& A) {
+    for (int line = 0; line < ahead.lines_per_lane; ++line)
+        __builtin_prefetch(ahead.batch + (l * ahead.lines_per_lane + line) * 64, 1);
+    if (l >= ahead.next_count) return;
+    const std::int32_t j = ahead.next->j[l];
+    __builtin_prefetch(&A.position[j]);
+    __builtin_prefetch(&A.velocity[j]);
+    __builtin_prefetch(&A.spin[j]);
+    __builtin_prefetch(&A.radius[j]);
+}
+
+/// Lanes [0, count) of P from the particle arrays (the rest stay as they are, never used), and
+/// whether each pair is open (R.open, the separate contact phase's test); true if any overlaps.
+inline bool load_particles(BatchParticles& P, BatchResults& R, const PairBatch& B, int count, const ParticleArrays& A,
+                           const BatchAhead& ahead) {
+    bool any_overlap = false;
+    for (int l = 0; l < count; ++l) {
+        prefetch_ahead(ahead, l, A);
+        const std::int32_t a = B.i[l], b = B.j[l];
+        const Vec3 xa = A.position[a], xb = A.position[b];
+        set_lane(P.xa, l, xa);
+        set_lane(P.xb, l, xb);
+        set_lane(P.va, l, A.velocity[a]);
+        set_lane(P.vb, l, A.velocity[b]);
+        set_lane(P.wa, l, A.spin[a]);
+        set_lane(P.wb, l, A.spin[b]);
+        const double ra = A.radius[a], rb = A.radius[b];
+        P.ra[l] = ra;
+        P.rb[l] = rb;
+        const bool open = norm2(xb - xa) >= (ra + rb) * (ra + rb);
+        R.open[l] = open ? 1.0 : 0.0;
+        any_overlap |= !open;
+    }
+    return any_overlap;
+}
+
+/// The scalars of one pass: the step, the contact law's parameters, and the bonds' stiffness,
+/// section and friction parameters when every bond family has the same (`uniform`).
+struct PassScalars {
+    double dt;                    ///< [s]
+    double contact_modulus;       ///< E* [Pa]
+    double contact_ratio;         ///< k_n/k_s [-]
+    double friction;              ///< μ [-]
+    bool uniform;
+    double radius_multiplier;     ///< λ̄ [-]
+    double bond_modulus;          ///< Ē* [Pa]
+    double bond_ratio;            ///< k̄_n/k̄_s [-]
+    double tan_phi;               ///< tan φ̄ [-]
+    double moment_factor;         ///< β̄ [-]
+};
+
+/// What acts on j from lane l's linear contact (compute_contacts()'s expressions): its force
+/// and moment where the pair overlaps, zero where it is open; the contact's shear force
+/// advanced in the batch (+0 when open) and its energies into R.
+__attribute__((always_inline)) inline void lane_contact(PairBatch& B, BatchResults& R, int l, const PairState& s,
+                                                        const PairKinematics& kin, const PassScalars& K, Vec3& force,
+                                                        Vec3& torque) {
+    const bool open = R.open[l] != 0.0;
+    const double kn = contact_normal_stiffness(K.contact_modulus, s.ra, s.rb);
+    LinearContactResult r = linear_contact(kn, kn / K.contact_ratio, K.friction, kin.gap,
+                                           rotate_into_plane(lane(B.shear, l), kin), kin.du_shear);
+    const Vec3 contact_force = r.normal_force * kin.normal + r.shear_force;
+    const Vec3 contact_torque = cross(kin.arm_b, contact_force);
+    set_lane(B.shear, l, select(open, Vec3{}, r.shear_force));
+    R.contact_strain[l] = open ? 0.0 : r.strain_energy;
+    R.contact_slip[l] = open ? 0.0 : r.slip_energy;
+    force = select(open, Vec3{}, contact_force);
+    torque = select(open, Vec3{}, contact_torque);
+}
+
+/// Lane l's bond through ParallelBondLaw::advance(), its state advanced in the batch (a dummy
+/// in a lane without a bond: its state is then never read back); its failure code, stresses
+/// and energy into R. Uniform: the bond's section and stiffness from the radii and K, as
+/// World::refresh_bond_constants() computes them (the same expressions, so the same bits),
+/// instead of from the lanes' copies (64 bytes per pair not read).
+template <bool Uniform>
+__attribute__((always_inline)) inline ParallelBondLaw::Advance lane_bond(PairBatch& B, BatchResults& R, int l, const PairState& s,
+                                                                      const PairKinematics& kin, const PassScalars& K) {
+    ParallelBond bond;
+    bond.tensile_strength = B.tensile_strength[l];
+    bond.cohesion = B.cohesion[l];
+    bond.normal_force = B.normal_force[l];
+    bond.shear_force = lane(B.shear_force, l);
+    bond.twist_moment = B.twist_moment[l];
+    bond.bend_moment = lane(B.bend_moment, l);
+    BondSection sec;
+    BondStiffness stiffness;
+    // energy always computed here (a select on a loop-invariant bool does not vectorise);
+    // the scalar loop keeps it only if tracked, as ParallelBondLaw::step() does
+    ParallelBondLaw::Context ctx;
+    if constexpr (Uniform) {
+        sec = bond_section(K.radius_multiplier, s.ra, s.rb);
+        stiffness = bond_stiffness(K.bond_modulus, K.bond_ratio, s.ra, s.rb);
+        ctx = {K.tan_phi, K.moment_factor, true};
+    } else {
+        sec = bond_section_of_radius(B.radius[l], B.inv_radius[l]);
+        stiffness = {B.kn[l], B.ks[l]};
+        ctx = {B.tan_phi[l], B.moment_factor[l], true};
+    }
+    ParallelBondLaw::Advance adv = ParallelBondLaw::advance(ctx, bond, sec, stiffness, kin);
+    B.normal_force[l] = bond.normal_force;
+    set_lane(B.shear_force, l, bond.shear_force);
+    B.twist_moment[l] = bond.twist_moment;
+    set_lane(B.bend_moment, l, bond.bend_moment);
+    R.failure[l] = B.bond[l] >= 0 ? static_cast<double>(static_cast<int>(adv.failure)) : kIntact;
+    R.tensile[l] = adv.stress.tensile;
+    R.shear_stress[l] = adv.stress.shear;
+    R.bond_energy[l] = adv.energy;
+    return adv;
+}
+
+/// The arithmetic of compute_contacts() (WithContact: some pair of the batch overlaps) and of
+/// ParallelBondLaw::step() for every lane of a batch: the kinematics, the contact, the bond,
+/// and what acts on j (the contact if it overlaps, then the bond if it holds, added after).
+template <bool WithContact, bool Uniform>
+__attribute__((always_inline, flatten)) inline void pair_batch_body(PairBatch& B, BatchResults& R, const BatchParticles& P,
+                                                                  const PassScalars& K) {
 #pragma GCC ivdep
-    for (int l = 0; l < n; ++l) {
-        PairState s{lane(L.xa, l), lane(L.xb, l), lane(L.va, l), lane(L.vb, l),
-                          lane(L.wa, l), lane(L.wb, l), L.ra[l], L.rb[l]};
+    for (int l = 0; l < kLanes; ++l) {
+        PairState s{lane(P.xa, l), lane(P.xb, l), lane(P.va, l), lane(P.vb, l),
+                    lane(P.wa, l), lane(P.wb, l), P.ra[l],       P.rb[l]};
         // Aggregates not const: GCC keeps a const aggregate in memory (SRA refuses the store
         // of its return slot), and a struct in memory blocks the vectoriser.
-        PairKinematics kin = pair_kinematics(s, dt);
-        if constexpr (WithContact) {
-            const double kn = contact_normal_stiffness(e_contact, s.ra, s.rb);
-            LinearContactResult r = linear_contact(kn, kn / ratio_contact, friction, kin.gap,
-                                                         rotate_into_plane(lane(L.shear, l), kin), kin.du_shear);
-            const Vec3 force = r.normal_force * kin.normal + r.shear_force;
-            set_lane(L.c_shear, l, r.shear_force);
-            set_lane(L.c_force, l, force);
-            set_lane(L.c_torque, l, cross(kin.arm_b, force));
-            L.c_strain[l] = r.strain_energy;
-            L.c_slip[l] = r.slip_energy;
-        }
-        ParallelBond b;
-        b.tensile_strength = L.strength[l];
-        b.cohesion = L.cohesion[l];
-        b.normal_force = L.fn[l];
-        b.shear_force = lane(L.fs, l);
-        b.twist_moment = L.mt[l];
-        b.bend_moment = lane(L.mb, l);
-        BondSection sec = bond_section_of_radius(L.radius[l], L.inv_radius[l]);
-        // energy always computed here (a select on a loop-invariant bool does not vectorise);
-        // the write-back keeps it only if tracked, as ParallelBondLaw::step() does
-        const ParallelBondLaw::Context ctx{L.tan_phi[l], L.beta[l], true};
-        ParallelBondLaw::Advance a = ParallelBondLaw::advance(ctx, b, sec, {L.kn[l], L.ks[l]}, kin);
-        L.fn[l] = b.normal_force;
-        set_lane(L.fs, l, b.shear_force);
-        L.mt[l] = b.twist_moment;
-        set_lane(L.mb, l, b.bend_moment);
-        L.failure[l] = static_cast<double>(static_cast<int>(a.failure));
-        L.tensile[l] = a.stress.tensile;
-        L.shear_stress[l] = a.stress.shear;
-        L.energy[l] = a.energy;
-        set_lane(L.b_force, l, a.force_j);
-        set_lane(L.b_torque, l, cross(kin.arm_b, a.force_j) + a.moment_j);
+        PairKinematics kin = pair_kinematics(s, K.dt);
+        Vec3 force, torque;
+        if constexpr (WithContact) lane_contact(B, R, l, s, kin, K, force, torque);
+        else set_lane(B.shear, l, Vec3{});  // every pair of the batch is open
+        ParallelBondLaw::Advance adv = lane_bond<Uniform>(B, R, l, s, kin, K);
+        const bool holds = (B.bond[l] >= 0) & (adv.failure == BondState::intact);
+        const Vec3 bond_torque = cross(kin.arm_b, adv.force_j) + adv.moment_j;
+        set_lane(R.force, l, select(holds, force + adv.force_j, force));
+        set_lane(R.torque, l, select(holds, torque + bond_torque, torque));
     }
 }
 
@@ -139,16 +240,33 @@ __attribute__((always_inline, flatten)) inline void pair_lanes_body(Lanes& L, do
 #define GRADEM_LANES_CLONES
 #endif
 
-GRADEM_LANES_CLONES __attribute__((flatten)) void contact_lanes(Lanes& L, double dt, double e, double ratio, double mu) {
-    pair_lanes_body<true>(L, dt, e, ratio, mu);
+GRADEM_LANES_CLONES __attribute__((flatten)) void contact_bond_lanes(PairBatch& B, BatchResults& R, const BatchParticles& P,
+                                                                     const PassScalars& K) {
+    pair_batch_body<true, false>(B, R, P, K);
 }
-GRADEM_LANES_CLONES __attribute__((flatten)) void bond_lanes(Lanes& L, double dt) {
-    pair_lanes_body<false>(L, dt, 0.0, 1.0, 0.0);
+GRADEM_LANES_CLONES __attribute__((flatten)) void bond_lanes(PairBatch& B, BatchResults& R, const BatchParticles& P,
+                                                             const PassScalars& K) {
+    pair_batch_body<false, false>(B, R, P, K);
+}
+GRADEM_LANES_CLONES __attribute__((flatten)) void contact_bond_lanes_uniform(PairBatch& B, BatchResults& R,
+                                                                             const BatchParticles& P, const PassScalars& K) {
+    pair_batch_body<true, true>(B, R, P, K);
+}
+GRADEM_LANES_CLONES __attribute__((flatten)) void bond_lanes_uniform(PairBatch& B, BatchResults& R, const BatchParticles& P,
+                                                                     const PassScalars& K) {
+    pair_batch_body<false, true>(B, R, P, K);
 }
 
-}  // namespace
-
-namespace {
+/// One batch through the kernel it needs: the contact's arithmetic only if a pair overlaps.
+inline void run_batch(PairBatch& B, BatchResults& R, const BatchParticles& P, const PassScalars& K, bool any_overlap) {
+    if (K.uniform) {
+        if (any_overlap) contact_bond_lanes_uniform(B, R, P, K);
+        else bond_lanes_uniform(B, R, P, K);
+    } else {
+        if (any_overlap) contact_bond_lanes(B, R, P, K);
+        else bond_lanes(B, R, P, K);
+    }
+}
 
 /// A bond's energy released by its break [J], kept per pair block in pair order (= bond order).
 struct Released {
@@ -163,224 +281,138 @@ struct BlockOut {
     std::vector<Released> released;
 };
 
-/// Where each pair of a batch went: -1 nothing acts, 0 a lane of the overlapping set, 1 a lane
-/// of the open bonded set; and its lane index.
-struct BatchSlots {
-    std::int8_t where[kLanes];
-    std::int8_t which[kLanes];
-};
-
-constexpr double kIntact = static_cast<double>(static_cast<int>(BondState::intact));
+/// A lane without an intact bond (pair_batch.hpp): a harmless dummy bond.
+void clear_bond_lane(PairBatch& B, int l) {
+    B.bond[l] = -1;
+    B.normal_force[l] = B.twist_moment[l] = 0.0;
+    for (int c = 0; c < 3; ++c) B.shear_force[c][l] = B.bend_moment[c][l] = 0.0;
+    B.tensile_strength[l] = B.cohesion[l] = B.radius[l] = B.inv_radius[l] = B.kn[l] = B.ks[l] = 1.0;
+    B.tan_phi[l] = B.moment_factor[l] = 0.0;
+}
 
 }  // namespace
 
-/// The pass of compute_contacts_and_parallel_bonds, as a list of steps per batch of kLanes
-/// pairs: scan (which pairs need work, their inputs into lanes), the lane arithmetic, the
-/// results back in pair order, and the breaks. `Prefetch` compiles the stream prefetches in
-/// or out, so the in-cache loop is the one without them.
+/// The pass of compute_contacts_and_parallel_bonds, as a list of steps per batch of kPairLanes
+/// pairs: the lane arithmetic in place, the results into the pair slots in pair order, and the
+/// breaks. `Prefetch` compiles the stream prefetches in or out, so the in-cache loop is the one
+/// without them.
 struct World::ParallelBondPass {
     World& w;
     double dt;
     bool track;  ///< keep bond energies (sim_.track_energy)
-    std::vector<ParallelBondLaw::Context> contexts;  ///< one per bond family pair
+    ParticleArrays particles;
+    PassScalars scalars;
     std::vector<BlockOut> blocks;
 
-    ParallelBondPass(World& world, double step) : w(world), dt(step), track(world.sim_.track_energy) {
-        for (const BondParams& p : w.bond_family_params_) contexts.push_back(ParallelBondLaw::context(p, track));
+    ParallelBondPass(World& world, double step)
+        : w(world), dt(step), track(world.sim_.track_energy),
+          particles{w.particles_.position.data(), w.particles_.velocity.data(), w.particles_.spin.data(),
+                    w.particles_.radius.data()},
+          scalars(pass_scalars(world, step)) {
         blocks.resize(static_cast<std::size_t>(block_count(static_cast<std::int64_t>(w.pairs_.size()))));
     }
 
-    /// Bytes the pass streams: pair records and slots, bonds, constants and energies, x v w r.
+    /// The pass's scalars; uniform when every bond family pair has the parameters of the first.
+    static PassScalars pass_scalars(const World& w, double dt) {
+        const BondParams& first = w.bond_family_params_.front();
+        const bool uniform = std::all_of(w.bond_family_params_.begin(), w.bond_family_params_.end(), [&](const BondParams& p) {
+            return p.radius_multiplier == first.radius_multiplier && p.effective_modulus == first.effective_modulus &&
+                   p.stiffness_ratio == first.stiffness_ratio && p.friction_angle_deg == first.friction_angle_deg &&
+                   p.moment_factor == first.moment_factor;
+        });
+        const ParallelBondLaw::Context ctx = ParallelBondLaw::context(first, true);
+        return {dt, w.contact_.effective_modulus, w.contact_.stiffness_ratio, w.contact_.friction, uniform,
+                first.radius_multiplier, first.effective_modulus, first.stiffness_ratio, ctx.tan_phi, ctx.moment_factor};
+    }
+
+    /// Bytes the pass streams: batches and slots, stored bond energies, x v w r.
     [[nodiscard]] std::size_t streamed_bytes() const {
-        return w.pairs_.size() * (sizeof(Pair) + sizeof(PairOutput)) +
-               w.bonds_.size() * (sizeof(ParallelBond) + sizeof(BondConstants) + sizeof(double)) +
-               w.particles_.size() * (3 * sizeof(Vec3) + sizeof(double));
+        return w.pair_batches_.size() * sizeof(PairBatch) + w.pairs_.size() * sizeof(PairOutput) +
+               w.bonds_.size() * sizeof(double) + w.particles_.size() * (3 * sizeof(Vec3) + sizeof(double));
+    }
+
+    /// The batches to prefetch while the batch from k0 is loaded (BatchAhead).
+    [[nodiscard]] BatchAhead ahead_of(std::int64_t k0, std::int64_t end) const {
+        const std::size_t read_bytes = scalars.uniform ? offsetof(PairBatch, radius) : sizeof(PairBatch);
+        const auto batch_of = [&](std::int64_t k) -> const PairBatch& {
+            return w.pair_batches_[static_cast<std::size_t>(std::min(k, end - 1) / kLanes)];
+        };
+        return {reinterpret_cast<const char*>(&batch_of(k0 + 2 * kLanes)),
+                static_cast<int>((read_bytes + 64 * kLanes - 1) / (64 * kLanes)), &batch_of(k0 + kLanes),
+                static_cast<int>(std::clamp<std::int64_t>(end - k0 - kLanes, 0, kLanes))};
     }
 
     template <bool Prefetch>
     void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BlockOut& bo = blocks[static_cast<std::size_t>(blk)];
-        auto lanes = std::make_unique_for_overwrite<Lanes[]>(2);  // no zero-fill of 2 x 26 kB per block
-        Lanes& C = lanes[0];  // overlapping pairs: contact, and bond if bonded
-        Lanes& B = lanes[1];  // open bonded pairs: bond only
-        BatchSlots slots;
-        for (std::int64_t b0 = begin; b0 < end; b0 += kLanes) {
-            const std::int64_t b1 = std::min(end, b0 + kLanes);
-            scan<Prefetch>(b0, b1, end, lanes.get(), slots);
-            if (C.count > 0) contact_lanes(C, dt, w.contact_.effective_modulus, w.contact_.stiffness_ratio, w.contact_.friction);
-            if (B.count > 0) bond_lanes(B, dt);
-            if (write_back(C, B, bo)) record_breaks(b0, b1, lanes.get(), slots, bo);
+        auto results = std::make_unique<BatchResults>();
+        auto lanes = std::make_unique<BatchParticles>();  // lanes past the end of the pairs stay finite
+        for (std::int64_t k0 = begin; k0 < end; k0 += kLanes) {
+            PairBatch& B = w.pair_batches_[static_cast<std::size_t>(k0 / kLanes)];
+            const int count = static_cast<int>(std::min<std::int64_t>(end - k0, kLanes));
+            if constexpr (Prefetch) prefetch_slots(k0 + kLanes, end);
+            const bool any_overlap = load_particles(*lanes, *results, B, count, particles, ahead_of(k0, end));
+            run_batch(B, *results, *lanes, scalars, any_overlap);
+            if (write_results(k0, count, B, *results, bo)) record_breaks(count, B, *results, bo);
         }
     }
 
-    /// 1. Which pairs of [b0, b1) need work; their inputs copied into lanes (the lane set is
-    ///    picked by index, not by a branch: open/closed is a coin flip in a loaded test).
-    template <bool Prefetch>
-    __attribute__((always_inline)) inline void scan(std::int64_t b0, std::int64_t b1, std::int64_t end, Lanes* lanes,
-                                                    BatchSlots& slots) {
-        int count[2] = {0, 0};  // counters in registers
-        for (std::int64_t k = b0; k < b1; ++k) {
-            prefetch_ahead<Prefetch>(k, end);
-            Pair& p = w.pairs_[static_cast<std::size_t>(k)];
-            const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
-            const double ra = w.particles_.radius[i], rb = w.particles_.radius[j];
-            const Vec3 d = w.particles_.position[j] - w.particles_.position[i];
-            const bool bonded = p.bond >= 0 && w.bonds_[static_cast<std::size_t>(p.bond)].state == BondState::intact;
-            const bool open = norm2(d) >= (ra + rb) * (ra + rb);
-            const auto slot = static_cast<std::size_t>(k - b0);
-            if (__builtin_expect(static_cast<int>(open) & static_cast<int>(!bonded), 0)) {  // nothing acts
-                slots.where[slot] = -1;
-                clear_shear(p.shear_force);
-                w.pair_out_[static_cast<std::size_t>(k)] = {};
-                continue;
-            }
-            Lanes& L = lanes[static_cast<std::size_t>(open)];
-            const int l = open ? count[1] : count[0];
-            count[1] += open;
-            count[0] += !open;
-            slots.where[slot] = static_cast<std::int8_t>(open);
-            slots.which[slot] = static_cast<std::int8_t>(l);
-            load_pair(L, l, k, p, bonded);
-        }
-        lanes[0].count = count[0];
-        lanes[1].count = count[1];
+    /// The output slots of the batch from k0 (with the stream prefetches: only out of cache,
+    /// SimParams::stream_prefetch_above_bytes).
+    __attribute__((always_inline)) inline void prefetch_slots(std::int64_t k0, std::int64_t end) const {
+        if (k0 >= end) return;
+        const int count = static_cast<int>(std::min<std::int64_t>(end - k0, kLanes));
+        const auto* slots = reinterpret_cast<const char*>(&w.pair_out_[static_cast<std::size_t>(k0)]);
+        for (std::size_t line = 0; line < static_cast<std::size_t>(count) * sizeof(PairOutput); line += 64)
+            __builtin_prefetch(slots + line, 1);
     }
 
-    /// Prefetches for pair k: particle j of a pair a few pairs ahead (a random access: pairs are
-    /// sorted by i, so i streams, and the hardware does not prefetch j); with Prefetch, the
-    /// streams of the pair a batch ahead (bond, bond constants, stored energy, output slot, and
-    /// the pair record further on): ~10 concurrent streams at N = 2e5 outrun the hardware
-    /// prefetcher (only out of cache: SimParams::stream_prefetch_above_bytes).
-    template <bool Prefetch>
-    __attribute__((always_inline)) inline void prefetch_ahead(std::int64_t k, std::int64_t end) const {
-        if (k + kPrefetchAhead < end) {
-            const auto jn = static_cast<std::size_t>(w.pairs_[static_cast<std::size_t>(k + kPrefetchAhead)].j);
-            __builtin_prefetch(&w.particles_.position[jn]);
-            __builtin_prefetch(&w.particles_.velocity[jn]);
-            __builtin_prefetch(&w.particles_.spin[jn]);
-            __builtin_prefetch(&w.particles_.radius[jn]);
-        }
-        if constexpr (Prefetch) if (k + kStreamAhead < end) {
-            const auto ka = static_cast<std::size_t>(k + kStreamAhead);
-            __builtin_prefetch(&w.pair_out_[ka], 1);
-            __builtin_prefetch(&w.pairs_[std::min(ka + kStreamAhead, w.pairs_.size() - 1)]);
-            if (const std::int32_t bond = w.pairs_[ka].bond; bond >= 0) {
-                const auto* record = reinterpret_cast<const char*>(&w.bonds_[static_cast<std::size_t>(bond)]);
-                __builtin_prefetch(record + offsetof(ParallelBond, state), 1);  // a bond spans two lines
-                __builtin_prefetch(record + sizeof(ParallelBond) - 1, 1);
-                __builtin_prefetch(&w.bond_const_[static_cast<std::size_t>(bond)]);
-                __builtin_prefetch(&w.bond_stored_[static_cast<std::size_t>(bond)], 1);
-            }
-        }
-    }
-
-    /// Lane l of L: pair k's particles, its stored contact shear force, and its bond (a harmless
-    /// dummy bond, whose results are not used, when it is not bonded).
-    __attribute__((always_inline)) inline void load_pair(Lanes& L, int l, std::int64_t k, const Pair& p, bool bonded) const {
-        const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
-        L.pair[l] = k;
-        L.bond[l] = bonded ? p.bond : -1;
-        set_lane(L.xa, l, w.particles_.position[i]);
-        set_lane(L.xb, l, w.particles_.position[j]);
-        set_lane(L.va, l, w.particles_.velocity[i]);
-        set_lane(L.vb, l, w.particles_.velocity[j]);
-        set_lane(L.wa, l, w.particles_.spin[i]);
-        set_lane(L.wb, l, w.particles_.spin[j]);
-        L.ra[l] = w.particles_.radius[i];
-        L.rb[l] = w.particles_.radius[j];
-        set_lane(L.shear, l, p.shear_force);
-        if (!bonded) {
-            L.fn[l] = L.mt[l] = 0.0;
-            set_lane(L.fs, l, {});
-            set_lane(L.mb, l, {});
-            L.strength[l] = L.cohesion[l] = 1.0;
-            L.radius[l] = L.inv_radius[l] = L.kn[l] = L.ks[l] = 1.0;
-            L.tan_phi[l] = L.beta[l] = 0.0;
-            return;
-        }
-        const ParallelBond& bd = w.bonds_[static_cast<std::size_t>(p.bond)];
-        const BondConstants& bc = w.bond_const_[static_cast<std::size_t>(p.bond)];
-        const ParallelBondLaw::Context& ctx = contexts[bd.family_pair];
-        L.fn[l] = bd.normal_force;
-        set_lane(L.fs, l, bd.shear_force);
-        L.mt[l] = bd.twist_moment;
-        set_lane(L.mb, l, bd.bend_moment);
-        L.strength[l] = bd.tensile_strength;
-        L.cohesion[l] = bd.cohesion;
-        L.radius[l] = bc.radius;
-        L.inv_radius[l] = bc.inv_radius;
-        L.kn[l] = bc.stiffness.normal;
-        L.ks[l] = bc.stiffness.shear;
-        L.tan_phi[l] = ctx.tan_phi;
-        L.beta[l] = ctx.moment_factor;
-    }
-
-    /// 3. Results back. Contact lanes in pair order (so the energies are summed in pair order):
-    ///    contact output first, then the bond's part, as the separate phases did. True if a
-    ///    bond of the batch broke.
-    __attribute__((always_inline)) inline bool write_back(const Lanes& C, const Lanes& B, BlockOut& bo) {
+    /// The batch's results in pair order: each pair's output slot, the contact energies summed
+    /// in pair order, each holding bond's stored energy. True if a bond of the batch broke.
+    __attribute__((always_inline)) inline bool write_results(std::int64_t k0, int count, const PairBatch& B,
+                                                             const BatchResults& R, BlockOut& bo) {
         bool any_break = false;
         double strain_sum = bo.contact_strain, slip_sum = bo.contact_slip;
-        for (int l = 0; l < C.count; ++l) {
-            const auto k = static_cast<std::size_t>(C.pair[l]);
-            PairOutput& out = w.pair_out_[k];
-            w.pairs_[k].shear_force = lane(C.c_shear, l);
-            out.force_j = lane(C.c_force, l);
-            out.torque_j = lane(C.c_torque, l);
-            strain_sum += C.c_strain[l];
-            slip_sum += C.c_slip[l];
-            any_break |= !store_bond(C, l, out);
-        }
-        for (int l = 0; l < B.count; ++l) {  // open: the contact carries nothing
-            const auto k = static_cast<std::size_t>(B.pair[l]);
-            PairOutput& out = w.pair_out_[k];
-            clear_shear(w.pairs_[k].shear_force);
-            out = {};
-            any_break |= !store_bond(B, l, out);
+        for (int l = 0; l < count; ++l) {
+            PairOutput& out = w.pair_out_[static_cast<std::size_t>(k0 + l)];
+            out.force_j = lane(R.force, l);
+            out.torque_j = lane(R.torque, l);
+            if (R.open[l] == 0.0) {
+                strain_sum += R.contact_strain[l];
+                slip_sum += R.contact_slip[l];
+            }
+            const std::int32_t bk = B.bond[l];
+            if (bk < 0) continue;
+            if (R.failure[l] != kIntact) {
+                any_break = true;
+                continue;
+            }
+            w.bond_stored_[static_cast<std::size_t>(bk)] = track ? R.bond_energy[l] : 0.0;
         }
         bo.contact_strain = strain_sum;
         bo.contact_slip = slip_sum;
         return any_break;
     }
 
-    /// An intact bond's new state, energy and contribution to the pair output; false if it
-    /// broke (record_breaks handles it, in pair order).
-    __attribute__((always_inline)) inline bool store_bond(const Lanes& L, int l, PairOutput& out) {
-        const std::int32_t bk = L.bond[l];
-        if (bk < 0) return true;
-        if (L.failure[l] != kIntact) return false;
-        ParallelBond& b = w.bonds_[static_cast<std::size_t>(bk)];
-        b.normal_force = L.fn[l];
-        b.shear_force = lane(L.fs, l);
-        b.twist_moment = L.mt[l];
-        b.bend_moment = lane(L.mb, l);
-        w.bond_stored_[static_cast<std::size_t>(bk)] = track ? L.energy[l] : 0.0;
-        out.force_j += lane(L.b_force, l);
-        out.torque_j += lane(L.b_torque, l);
-        return true;
-    }
-
-    /// 4. Breaks (rare), in pair order = bond order: the event with the crack's geometry (the
-    ///    kinematics again: a pure function, the same bits), the release, the released energy.
-    void record_breaks(std::int64_t b0, std::int64_t b1, const Lanes* lanes, const BatchSlots& slots, BlockOut& bo) {
-        for (std::int64_t k = b0; k < b1; ++k) {
-            const auto slot = static_cast<std::size_t>(k - b0);
-            if (slots.where[slot] < 0) continue;
-            const Lanes& L = lanes[static_cast<std::size_t>(slots.where[slot])];
-            const int l = slots.which[slot];
-            if (L.bond[l] < 0 || L.failure[l] == kIntact) continue;
-            const auto bk = static_cast<std::size_t>(L.bond[l]);
+    /// Breaks (rare), in pair order = bond order: the event with the crack's geometry (the
+    /// kinematics again: a pure function, the same bits), the release, the released energy; the
+    /// lane becomes a dummy.
+    void record_breaks(int count, PairBatch& B, const BatchResults& R, BlockOut& bo) {
+        for (int l = 0; l < count; ++l) {
+            if (B.bond[l] < 0 || R.failure[l] == kIntact) continue;
+            const auto bk = static_cast<std::size_t>(B.bond[l]);
             ParallelBond& b = w.bonds_[bk];
-            const auto failure = static_cast<BondState>(static_cast<int>(L.failure[l]));
+            const auto failure = static_cast<BondState>(static_cast<int>(R.failure[l]));
             const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
             const PairState s{w.particles_.position[i], w.particles_.position[j], w.particles_.velocity[i], w.particles_.velocity[j],
                               w.particles_.spin[i],     w.particles_.spin[j],     w.particles_.radius[i],   w.particles_.radius[j]};
             const PairKinematics kin = pair_kinematics(s, dt);
-            bo.breaks.push_back({w.step_, w.time_, L.bond[l], b.i, b.j, failure, s.xa + kin.arm_a + Vec3{}, kin.normal, L.radius[l],
-                                 L.tensile[l], L.shear_stress[l], -1});
+            bo.breaks.push_back({w.step_, w.time_, B.bond[l], b.i, b.j, failure, s.xa + kin.arm_a + Vec3{}, kin.normal, B.radius[l],
+                                 R.tensile[l], R.shear_stress[l], -1});
             release_bond(b, failure);
             w.bond_stored_[bk] = 0.0;
-            bo.released.push_back({L.bond[l], track ? L.energy[l] : 0.0});
+            bo.released.push_back({B.bond[l], track ? R.bond_energy[l] : 0.0});
+            clear_bond_lane(B, l);
         }
     }
 
@@ -409,7 +441,12 @@ struct World::ParallelBondPass {
 };
 
 World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& strain, double& slip) {
-    if (bond_const_stale_) refresh_bond_constants();
+    if (bond_const_stale_) {
+        write_back_pair_batches();
+        refresh_bond_constants();
+        pair_batches_current_ = false;
+    }
+    if (!pair_batches_current_) build_pair_batches();
     bond_stored_.resize(bonds_.size(), 0.0);
     ParallelBondPass pass(*this, dt);
     const bool prefetch_streams = pass.streamed_bytes() > sim_.stream_prefetch_above_bytes;
@@ -417,7 +454,74 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
         if (prefetch_streams) pass.block<true>(begin, end, blk);
         else pass.block<false>(begin, end, blk);
     });
+    records_behind_batches_ = true;
     return pass.merge(strain, slip);
+}
+
+// The batches from the pair and bond records (pair_batch.hpp), one block of pairs per task.
+void World::build_pair_batches() {
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    pair_batches_.resize(pair_batch_count(pairs_.size()));
+    std::vector<ParallelBondLaw::Context> contexts;  // one per bond family pair
+    for (const BondParams& p : bond_family_params_) contexts.push_back(ParallelBondLaw::context(p, true));
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
+        for (std::int64_t k0 = begin; k0 < end; k0 += kLanes) {
+            PairBatch& B = pair_batches_[static_cast<std::size_t>(k0 / kLanes)];
+            for (int l = 0; l < kLanes; ++l) {
+                const std::int64_t k = k0 + l;
+                clear_bond_lane(B, l);
+                if (k >= m) {  // past the end: particle 0 with itself, never written back
+                    B.i[l] = B.j[l] = 0;
+                    set_lane(B.shear, l, {});
+                    continue;
+                }
+                const Pair& p = pairs_[static_cast<std::size_t>(k)];
+                B.i[l] = p.i;
+                B.j[l] = p.j;
+                set_lane(B.shear, l, p.shear_force);
+                if (p.bond < 0 || bonds_[static_cast<std::size_t>(p.bond)].state != BondState::intact) continue;
+                const ParallelBond& bd = bonds_[static_cast<std::size_t>(p.bond)];
+                const BondConstants& bc = bond_const_[static_cast<std::size_t>(p.bond)];
+                const ParallelBondLaw::Context& ctx = contexts[bd.family_pair];
+                B.bond[l] = p.bond;
+                B.normal_force[l] = bd.normal_force;
+                set_lane(B.shear_force, l, bd.shear_force);
+                B.twist_moment[l] = bd.twist_moment;
+                set_lane(B.bend_moment, l, bd.bend_moment);
+                B.tensile_strength[l] = bd.tensile_strength;
+                B.cohesion[l] = bd.cohesion;
+                B.radius[l] = bc.radius;
+                B.inv_radius[l] = bc.inv_radius;
+                B.kn[l] = bc.stiffness.normal;
+                B.ks[l] = bc.stiffness.shear;
+                B.tan_phi[l] = ctx.tan_phi;
+                B.moment_factor[l] = ctx.moment_factor;
+            }
+        }
+    });
+    pair_batches_current_ = true;
+    records_behind_batches_ = false;
+}
+
+// The contact shear forces and the intact bonds' forces and moments from the batches back into
+// the pair and bond records (a no-op when the records are current).
+void World::write_back_pair_batches() {
+    if (!records_behind_batches_) return;
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
+        for (std::int64_t k = begin; k < end; ++k) {
+            const PairBatch& B = pair_batches_[static_cast<std::size_t>(k / kLanes)];
+            const int l = static_cast<int>(k % kLanes);
+            pairs_[static_cast<std::size_t>(k)].shear_force = lane(B.shear, l);
+            if (B.bond[l] < 0) continue;
+            ParallelBond& bd = bonds_[static_cast<std::size_t>(B.bond[l])];
+            bd.normal_force = B.normal_force[l];
+            bd.shear_force = lane(B.shear_force, l);
+            bd.twist_moment = B.twist_moment[l];
+            bd.bend_moment = lane(B.bend_moment, l);
+        }
+    });
+    records_behind_batches_ = false;
 }
 
 }  // namespace gradem
