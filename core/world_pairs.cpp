@@ -298,17 +298,19 @@ void clear_bond_lane(PairBatch& B, int l) {
 /// without them.
 struct World::ParallelBondPass {
     World& w;
-    double dt;
     bool track;  ///< keep bond energies (sim_.track_energy)
     ParticleArrays particles;
     PassScalars scalars;
+    int ahead_lines;  ///< 64-byte lines per lane that cover the part of a batch the kernel reads
     std::vector<BlockOut> blocks;
 
     ParallelBondPass(World& world, double step)
-        : w(world), dt(step), track(world.sim_.track_energy),
+        : w(world), track(world.sim_.track_energy),
           particles{w.particles_.position.data(), w.particles_.velocity.data(), w.particles_.spin.data(),
                     w.particles_.radius.data()},
-          scalars(pass_scalars(world, step)) {
+          scalars(pass_scalars(world, step)),
+          ahead_lines(static_cast<int>(((scalars.uniform ? offsetof(PairBatch, radius) : sizeof(PairBatch)) + 64 * kLanes - 1) /
+                                       (64 * kLanes))) {
         blocks.resize(static_cast<std::size_t>(block_count(static_cast<std::int64_t>(w.pairs_.size()))));
     }
 
@@ -333,12 +335,10 @@ struct World::ParallelBondPass {
 
     /// The batches to prefetch while the batch from k0 is loaded (BatchAhead).
     [[nodiscard]] BatchAhead ahead_of(std::int64_t k0, std::int64_t end) const {
-        const std::size_t read_bytes = scalars.uniform ? offsetof(PairBatch, radius) : sizeof(PairBatch);
         const auto batch_of = [&](std::int64_t k) -> const PairBatch& {
             return w.pair_batches_[static_cast<std::size_t>(std::min(k, end - 1) / kLanes)];
         };
-        return {reinterpret_cast<const char*>(&batch_of(k0 + 2 * kLanes)),
-                static_cast<int>((read_bytes + 64 * kLanes - 1) / (64 * kLanes)), &batch_of(k0 + kLanes),
+        return {reinterpret_cast<const char*>(&batch_of(k0 + 2 * kLanes)), ahead_lines, &batch_of(k0 + kLanes),
                 static_cast<int>(std::clamp<std::int64_t>(end - k0 - kLanes, 0, kLanes))};
     }
 
@@ -406,7 +406,7 @@ struct World::ParallelBondPass {
             const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
             const PairState s{w.particles_.position[i], w.particles_.position[j], w.particles_.velocity[i], w.particles_.velocity[j],
                               w.particles_.spin[i],     w.particles_.spin[j],     w.particles_.radius[i],   w.particles_.radius[j]};
-            const PairKinematics kin = pair_kinematics(s, dt);
+            const PairKinematics kin = pair_kinematics(s, scalars.dt);
             bo.breaks.push_back({w.step_, w.time_, B.bond[l], b.i, b.j, failure, s.xa + kin.arm_a + Vec3{}, kin.normal, B.radius[l],
                                  R.tensile[l], R.shear_stress[l], -1});
             release_bond(b, failure);
