@@ -5,12 +5,13 @@
 // same for every joint up to selects, and runs across joints in structure-of-arrays lanes:
 //   1. a scalar scan over each block of bonds copies the inputs of every acting joint into lanes
 //      (particle state, the joint's header and element shear forces, its constants): the fully
-//      bonded joints into one set of kJointLanes (L, per batch of kJointLanes bonds), the others
-//      (partly bonded, slit, gapped, broken; with their elements' bonded flags) into a second
-//      (M), run whenever it is full, so its lanes are full but for the block's last;
-//   2. loops over a set run the pair kinematics and the frame, then each element (element loop
-//      outside, lanes inside: one vector operation serves a vector's worth of joints), then the
-//      resultant — compiled for AVX-512, AVX2 and the baseline ISA (function multiversioning,
+//      bonded joints into one set of kJointLanes (L), the others (partly bonded, slit, gapped,
+//      broken; with their elements' bonded flags) into a second (M); a set runs whenever it is
+//      full, so its lanes are full but for the block's last;
+//   2. loops over every lane of a set (a fixed trip count, so no scalar epilogue: the lanes past
+//      the set's joints hold harmless dummies) run the pair kinematics and the frame, then each
+//      element (element loop outside, lanes inside: one vector operation serves a vector's worth
+//      of joints), then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function multiversioning,
 //      picked at load time). For M the element loop is split: the normal load of every element
 //      (bonded: linear with its failure test; unbonded: linear if closed over its whole extent,
 //      nil if open), the elements the zero line cuts one joint at a time (unbonded_normal's
@@ -19,7 +20,7 @@
 //      that breaks this step, a separated joint to release: its lane result is discarded, its
 //      state is still the old one) runs through FlatJointLaw::step as the generic bond phase
 //      does. The energy terms of a block are summed in bond order and its break events sorted
-//      into bond order, as M's joints run out of order.
+//      into bond order, as the sets' joints run out of order.
 // The lanes call the law's own helpers (advance_frame, joint_step, element_trial, linear_normal,
 // unbonded_normal, joint_resultant) in the law's order, selects stand for its branches, and
 // every lane does the same IEEE operations as the scalar code (-ffp-contract=off: no FMA; no
@@ -81,7 +82,7 @@ inline void set_lane(double (&a)[3][kJointLanes], int l, const Vec3& v) {
 /// Loop 1: kinematics, the carried frame and the step constants of every lane.
 __attribute__((always_inline)) inline void frames(JointLanes& L, double dt) {
     using namespace flat_detail;
-    const int count = L.count;
+    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
 #pragma GCC ivdep
     for (int l = 0; l < count; ++l) {
         PairState s{lane(L.xa, l), lane(L.xb, l), lane(L.va, l), lane(L.vb, l),
@@ -148,7 +149,7 @@ __attribute__((always_inline)) inline bool lane_element_fails(const JointLanes& 
 /// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
 __attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const DiscElement& g) {
     using namespace flat_detail;
-    const int count = L.count;
+    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
 #pragma GCC ivdep
     for (int l = 0; l < count; ++l) {
         JointFrame f;
@@ -177,7 +178,7 @@ __attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::si
 /// cut_elements(). Every selected value is the scalar kernel's, bit for bit.
 __attribute__((always_inline)) inline void mixed_normal(JointLanes& L, std::size_t e, const DiscElement& g) {
     using namespace flat_detail;
-    const int count = L.count;
+    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
 #pragma GCC ivdep
     for (int l = 0; l < count; ++l) {
         JointFrame f;
@@ -233,7 +234,7 @@ inline void cut_elements(JointLanes& L, std::span<const DiscElement> elements) {
 /// element, with its slip energy) and the joint's sums in element order, as FlatJointLaw::step.
 __attribute__((always_inline)) inline void mixed_shear(JointLanes& L, std::size_t e, const DiscElement& g) {
     using namespace flat_detail;
-    const int count = L.count;
+    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
 #pragma GCC ivdep
     for (int l = 0; l < count; ++l) {
         JointFrame f;
@@ -272,7 +273,7 @@ __attribute__((always_inline)) inline void mixed_shear(JointLanes& L, std::size_
 /// A joint not fully bonded whose elements are all unbonded and open and whose surfaces are
 /// farther apart than its release gap is released by the scalar kernel.
 __attribute__((always_inline)) inline void mark_releases(JointLanes& L) {
-    const int count = L.count;
+    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
 #pragma GCC ivdep
     for (int l = 0; l < count; ++l) {
         const bool releases = (L.any_bonded[l] == 0.0) & (L.all_open[l] != 0.0) & (L.gap[l] > L.release_gap[l]);
@@ -283,7 +284,7 @@ __attribute__((always_inline)) inline void mark_releases(JointLanes& L) {
 /// Loop 3: the resultant on B, and its torque about B's centre.
 __attribute__((always_inline)) inline void resultants(JointLanes& L) {
     using namespace flat_detail;
-    const int count = L.count;
+    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
 #pragma GCC ivdep
     for (int l = 0; l < count; ++l) {
         JointSums sum;
@@ -327,6 +328,26 @@ GRADEM_JOINT_CLONES __attribute__((flatten)) void mixed_joint_lanes(JointLanes& 
     resultants(L);
 }
 
+/// Every lane's inputs a harmless dummy joint (two unit spheres apart and at rest, a unit joint
+/// without load): the kernels' loops run over all kJointLanes lanes, and the lanes past a set's
+/// joints must stay finite. Their results are never read.
+void dummy_inputs(JointLanes& L) {
+    for (int l = 0; l < kJointLanes; ++l) {
+        set_lane(L.xa, l, {});
+        set_lane(L.xb, l, {3.0, 0.0, 0.0});
+        set_lane(L.va, l, {});
+        set_lane(L.vb, l, {});
+        set_lane(L.wa, l, {});
+        set_lane(L.wb, l, {});
+        set_lane(L.axis, l, {0.0, 1.0, 0.0});
+        set_lane(L.bend, l, {});
+        L.ra[l] = L.rb[l] = 1.0;
+        L.twist[l] = L.normal[l] = L.tan_phi[l] = L.gap0[l] = L.friction[l] = L.release_gap[l] = 0.0;
+        L.scale[l] = L.radius[l] = L.kn[l] = L.ks[l] = L.strength[l] = L.cohesion[l] = L.unbonded_kn[l] = 1.0;
+        for (std::size_t e = 0; e < kMaxLaneElements; ++e) L.shear[e][0][l] = L.shear[e][1][l] = L.bonded[e][l] = 0.0;
+    }
+}
+
 /// Whether every family's element table is the same (the lanes share one geometry).
 bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     const auto& a = contexts.front().elements;
@@ -343,7 +364,7 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     return true;
 }
 
-/// A block's per-bond energy terms, summed in bond order at its end (the joints of M run out of
+/// A block's per-bond energy terms, summed in bond order at its end (the sets' joints run out of
 /// order), and its lane/scalar counts. The terms are not initialised (a bond's are read only
 /// once its flag is set): a block is 2048 bonds, and its step must not start by clearing them.
 struct BlockState {
@@ -415,68 +436,68 @@ struct FlatJointPass {
 
     void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BlockState st(begin, end);
-        // no zero-fill of 2 x 22 kB per block: the fully bonded joints' lanes, and the others'
-        auto lanes = std::make_unique_for_overwrite<JointLanes[]>(2);
-        JointLanes& L = lanes[0];
-        JointLanes& M = lanes[1];
-        M.count = 0;
-        std::int64_t m_bond[kJointLanes];  // the bond of each lane of M
-        std::int8_t which[kJointLanes];    // per bond of the batch: its lane in L, or -1
-        for (std::int64_t b0 = begin; b0 < end; b0 += kJointLanes) {
-            const std::int64_t b1 = std::min(end, b0 + kJointLanes);
-            scan(b0, b1, end, L, M, m_bond, which, st, blk);
-            if (L.count > 0) joint_lanes(L, dt, elements);
-            for (std::int64_t k = b0; k < b1; ++k) {
-                const int l = which[static_cast<std::size_t>(k - b0)];
-                if (l >= 0 && L.fails[l] == 0.0) st.lane(k, store_lane(k, L, l));
-                else if (l >= 0 || (!use_lanes && bond_acts(pass.bonds[static_cast<std::size_t>(k)])))
-                    st.scalar(k, scalar_joint(k, blk, st.breaks));
-            }
+        if (!use_lanes) {
+            for (std::int64_t k = begin; k < end; ++k)
+                if (bond_acts(pass.bonds[static_cast<std::size_t>(k)])) st.scalar(k, scalar_joint(k, blk, st.breaks));
+        } else {
+            // no zero-fill of 2 x 22 kB per block: the lanes start as harmless dummies instead
+            auto sets = std::make_unique_for_overwrite<LaneSet[]>(2);
+            LaneSet& bonded = sets[0];
+            LaneSet& mixed = sets[1];
+            bonded.start(false);
+            mixed.start(true);
+            for (std::int64_t k = begin; k < end; ++k) scan(k, end, bonded, mixed, st, blk);
+            flush(bonded, st, blk);
+            flush(mixed, st, blk);
         }
-        flush(M, m_bond, st, blk);
         partial[static_cast<std::size_t>(blk)] = st.sum();
         sort_breaks(broken[static_cast<std::size_t>(blk)]);
     }
 
-    /// 1. The acting joints of [b0, b1) into lanes: the fully bonded ones (intact and
-    ///    interface 0; kPartlyBonded: some element unbonded) into L, `which` getting their lane
-    ///    (-1 for the others); the others into M with their elements' flags, M run and emptied
-    ///    each time it is full, so its lanes are full but for the block's last.
-    __attribute__((always_inline)) inline void scan(std::int64_t b0, std::int64_t b1, std::int64_t end, JointLanes& L,
-                                                    JointLanes& M, std::int64_t* m_bond, std::int8_t* which, BlockState& st,
-                                                    std::int64_t blk) {
+    /// One set of lanes and the bond of each: the fully bonded joints (intact, interface 0), or
+    /// the others (partly bonded, slit, gapped, broken: with their elements' bonded flags).
+    struct LaneSet {
+        JointLanes lanes;
+        std::int64_t bond[kJointLanes];
+        bool mixed;
+        void start(bool holds_mixed) {
+            mixed = holds_mixed;
+            lanes.count = 0;
+            dummy_inputs(lanes);  // the kernels run over every lane
+        }
+    };
+
+    /// 1. Acting joint k into its set's next lane, the set run and emptied whenever it is full
+    ///    (so its lanes are full but for the block's last).
+    __attribute__((always_inline)) inline void scan(std::int64_t k, std::int64_t end, LaneSet& bonded, LaneSet& mixed,
+                                                    BlockState& st, std::int64_t blk) {
+        prefetch_ahead(k, end);
+        const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
+        if (!bond_acts(b)) return;
+        const bool fully_bonded = b.state == BondState::intact && b.interface == 0;
+        LaneSet& set = fully_bonded ? bonded : mixed;
+        const int l = set.lanes.count++;
+        set.bond[l] = k;
+        load_joint(set.lanes, l, k, b);
+        if (!fully_bonded) load_interface(set.lanes, l, k, b);
+        if (set.lanes.count == kJointLanes) flush(set, st, blk);
+    }
+
+    /// 2-3. A set through its kernel: each joint whose lane took the common path stored, the
+    ///    others through the scalar kernel; the set emptied.
+    void flush(LaneSet& set, BlockState& st, std::int64_t blk) {
+        JointLanes& L = set.lanes;
+        if (L.count == 0) return;
+        if (set.mixed) mixed_joint_lanes(L, dt, elements);
+        else joint_lanes(L, dt, elements);
+        for (int l = 0; l < L.count; ++l) {
+            if (L.fails[l] == 0.0) st.lane(set.bond[l], store_lane(set.bond[l], L, l));
+            else st.scalar(set.bond[l], scalar_joint(set.bond[l], blk, st.breaks));
+        }
         L.count = 0;
-        for (std::int64_t k = b0; k < b1; ++k) {
-            prefetch_ahead(k, end);
-            const auto slot = static_cast<std::size_t>(k - b0);
-            which[slot] = -1;
-            const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
-            if (!use_lanes || !bond_acts(b)) continue;
-            if (b.state == BondState::intact && b.interface == 0) {
-                which[slot] = static_cast<std::int8_t>(L.count);
-                load_joint(L, L.count++, k, b);
-                continue;
-            }
-            m_bond[M.count] = k;
-            load_joint(M, M.count, k, b);
-            load_interface(M, M.count++, k, b);
-            if (M.count == kJointLanes) flush(M, m_bond, st, blk);
-        }
     }
 
-    /// The joints of M through their lanes: each that took the common path stored, the others
-    /// through the scalar kernel; M emptied.
-    void flush(JointLanes& M, const std::int64_t* m_bond, BlockState& st, std::int64_t blk) {
-        if (M.count == 0) return;
-        mixed_joint_lanes(M, dt, elements);
-        for (int l = 0; l < M.count; ++l) {
-            if (M.fails[l] == 0.0) st.lane(m_bond[l], store_lane(m_bond[l], M, l));
-            else st.scalar(m_bond[l], scalar_joint(m_bond[l], blk, st.breaks));
-        }
-        M.count = 0;
-    }
-
-    /// A block's break events in bond order (the joints of M may run after later bonds; the
+    /// A block's break events in bond order (a set's joints may run after later bonds; the
     /// events of one joint stay in element order).
     static void sort_breaks(std::vector<BreakEvent>& events) {
         std::stable_sort(events.begin(), events.end(), [](const BreakEvent& a, const BreakEvent& b) { return a.bond < b.bond; });
