@@ -126,14 +126,13 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
         for (std::int64_t k = begin; k < end; ++k) {
             Pair& p = pairs_[static_cast<std::size_t>(k)];
             const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
-            const PairState s{particles_.position[i], particles_.position[j],
-                              particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
-                              particles_.spin[j], particles_.radius[i], particles_.radius[j]};
+            const Vec3 xa = particles_.position[i], xb = particles_.position[j];
+            const double ra = particles_.radius[i], rb = particles_.radius[j];
             PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
-            const Vec3 d = s.xb - s.xa;
+            const Vec3 d = xb - xa;
             // open first: an open pair needs no look at its bond record (a stream of 96-byte
-            // records read for one byte)
-            const bool open = norm2(d) >= (s.ra + s.rb) * (s.ra + s.rb);
+            // records read for one byte), nor at its particles' velocities and spins
+            const bool open = norm2(d) >= (ra + rb) * (ra + rb);
             if (open || (bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)]))) {
                 const Vec3& v = p.shear_force;  // stays +0 without a store (the record is not written back)
                 if ((std::bit_cast<std::uint64_t>(v.x) | std::bit_cast<std::uint64_t>(v.y) | std::bit_cast<std::uint64_t>(v.z)) != 0)
@@ -141,6 +140,8 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
                 out = {};
                 continue;
             }
+            const PairState s{xa, xb, particles_.velocity[i], particles_.velocity[j], particles_.spin[i],
+                              particles_.spin[j], ra, rb};
             const PairKinematics kin = pair_kinematics(s, dt);
             const double kn = contact_normal_stiffness(contact_.effective_modulus, s.ra, s.rb);
             const LinearContactResult r =
