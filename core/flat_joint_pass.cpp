@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "core/bond_pass.hpp"
 #include "core/flat_joint_law.hpp"
@@ -144,31 +145,6 @@ __attribute__((always_inline)) inline bool lane_element_fails(const JointLanes& 
     const double inv_a = g.inv_area / js.R2;
     return FlatJointLaw::element_fails(load.fn * inv_a, (t.s1 * t.s1 + t.s2 * t.s2) * inv_a * inv_a, L.strength[l],
                                        L.cohesion[l], L.tan_phi[l]);
-}
-
-/// Loop 2, for one element: FlatJointLaw::step's bonded branch, summed in element order.
-__attribute__((always_inline)) inline void bonded_element(JointLanes& L, std::size_t e, const DiscElement& g) {
-    using namespace flat_detail;
-    constexpr int count = kJointLanes;  // every lane: a fixed trip count, no scalar epilogue
-#pragma GCC ivdep
-    for (int l = 0; l < count; ++l) {
-        JointFrame f;
-        JointStep js;
-        lane_frame(L, l, f, js);
-        ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
-        const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
-        NormalLoad load = linear_normal(g, f, js.kn, js.R, t.opening);
-        L.fails[l] = lane_element_fails(L, l, g, js, load, t) ? 1.0 : L.fails[l];
-        L.stored[l] += load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
-        L.shear[e][0][l] = t.s1;
-        L.shear[e][1][l] = t.s2;
-        L.s1[l] += t.s1;
-        L.s2[l] += t.s2;
-        L.fn[l] += load.fn;
-        L.p1[l] += load.p1;
-        L.p2[l] += load.p2;
-        L.tw[l] += t.xy * t.s2 - t.xz * t.s1 - js.ksR4 * g.polar * f.twist;
-    }
 }
 
 /// Loop 2a of a joint not fully bonded, for one element: its normal load as FlatJointLaw::step
@@ -305,17 +281,80 @@ __attribute__((always_inline)) inline void resultants(JointLanes& L) {
     }
 }
 
+/// The fully bonded joints of E elements (E known when compiled), loops 1-3 in one: each lane's
+/// frame, its elements in order (FlatJointLaw::step's bonded branch, summed in element order)
+/// and its resultant, the frame and the sums in registers. The same operations in the same
+/// order as frames() and resultants() (which the mixed joints' kernel runs), so the same bits.
+template <std::size_t E>
+__attribute__((always_inline)) inline void fused_bonded_joints(JointLanes& L, double dt, const DiscElement* elements) {
+    using namespace flat_detail;
+#pragma GCC ivdep
+    for (int l = 0; l < kJointLanes; ++l) {
+        PairState s{lane(L.xa, l), lane(L.xb, l), lane(L.va, l), lane(L.vb, l),
+                    lane(L.wa, l), lane(L.wb, l), L.ra[l],       L.rb[l]};
+        PairKinematics kin = pair_kinematics(s, dt);
+        Vec3 bend_total;
+        JointFrame f = advance_frame(lane(L.axis, l), lane(L.bend, l), L.twist[l], L.normal[l], kin, bend_total);
+        JointStep js = joint_step(f, L.scale[l], {L.kn[l], L.ks[l]}, L.radius[l], kin);
+        double s1 = 0.0, s2 = 0.0, fn = 0.0, p1 = 0.0, p2 = 0.0, tw = 0.0, stored = 0.0;
+        bool fails = false;
+#pragma GCC unroll 8
+        for (std::size_t e = 0; e < E; ++e) {
+            const DiscElement& g = elements[e];
+            ElementTrial t = element_trial(g, f, js, L.shear[e][0][l], L.shear[e][1][l]);
+            const double twist_energy = 0.5 * js.ksR4 * g.polar * f.twist * f.twist;
+            NormalLoad load = linear_normal(g, f, js.kn, js.R, t.opening);
+            fails |= lane_element_fails(L, l, g, js, load, t);
+            stored += load.energy + 0.5 * (t.s1 * t.s1 + t.s2 * t.s2) * t.inv_ksa + twist_energy;
+            L.shear[e][0][l] = t.s1;
+            L.shear[e][1][l] = t.s2;
+            s1 += t.s1;
+            s2 += t.s2;
+            fn += load.fn;
+            p1 += load.p1;
+            p2 += load.p2;
+            tw += t.xy * t.s2 - t.xz * t.s1 - js.ksR4 * g.polar * f.twist;
+        }
+        JointSums sum;
+        sum.s1 = s1;
+        sum.s2 = s2;
+        sum.fn = fn;
+        sum.p1 = p1;
+        sum.p2 = p2;
+        sum.twist = tw;
+        JointResultant r = joint_resultant(sum, f, kin.normal);
+        set_lane(L.t1, l, f.t1);
+        set_lane(L.bend_total, l, bend_total);
+        L.twist[l] = f.twist;
+        L.normal[l] = f.normal;
+        L.fn[l] = fn;
+        L.tw[l] = tw;
+        L.stored[l] = stored;
+        L.slip[l] = 0.0;
+        L.fails[l] = fails ? 1.0 : 0.0;
+        set_lane(L.force, l, r.force);
+        set_lane(L.torque, l, cross(kin.arm_b, r.force) + r.moment);
+        set_lane(L.shear_res, l, r.shear);
+        set_lane(L.bend_res, l, r.bend);
+    }
+}
+
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(GRADEM_NO_CLONES)
 #define GRADEM_JOINT_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define GRADEM_JOINT_CLONES
 #endif
 
+/// fused_bonded_joints<E> for the joints' element count E in [1, kMaxLaneElements].
+template <std::size_t... E>
+__attribute__((always_inline)) inline void bonded_joints(JointLanes& L, double dt, std::span<const DiscElement> elements,
+                                                         std::index_sequence<E...>) {
+    (void)((elements.size() == E + 1 ? (fused_bonded_joints<E + 1>(L, dt, elements.data()), true) : false) || ...);
+}
+
 GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, double dt,
                                                               std::span<const DiscElement> elements) {
-    frames(L, dt);
-    for (std::size_t e = 0; e < elements.size(); ++e) bonded_element(L, e, elements[e]);
-    resultants(L);
+    bonded_joints(L, dt, elements, std::make_index_sequence<kMaxLaneElements>{});
 }
 
 GRADEM_JOINT_CLONES __attribute__((flatten)) void mixed_joint_lanes(JointLanes& L, double dt,
