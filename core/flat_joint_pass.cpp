@@ -5,17 +5,19 @@
 // same for every joint up to selects, and runs across joints in structure-of-arrays lanes:
 //   1. a scalar scan over each block of bonds copies the inputs of every acting joint into lanes
 //      (particle state, the joint's header and element shear forces, its constants): the fully
-//      bonded joints into one set of kJointLanes (L), the others (partly bonded, slit, gapped,
-//      broken; with their elements' bonded flags) into a second (M); a set runs whenever it is
-//      full, so its lanes are full but for the block's last;
-//   2. loops over every lane of a set (a fixed trip count, so no scalar epilogue: the lanes past
-//      the set's joints hold harmless dummies) run the pair kinematics and the frame, then each
-//      element (element loop outside, lanes inside: one vector operation serves a vector's worth
-//      of joints), then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function multiversioning,
-//      picked at load time). For M the element loop is split: the normal load of every element
-//      (bonded: linear with its failure test; unbonded: linear if closed over its whole extent,
-//      nil if open), the elements the zero line cuts one joint at a time (unbonded_normal's
-//      closed form), then the shear with the Coulomb cap and the sums in element order;
+//      bonded joints into one set of kJointLanes lanes, the others (partly bonded, slit, gapped,
+//      broken; with their elements' bonded flags) into a second, the mixed set; a set runs
+//      whenever it is full, so its lanes are full but for the block's last;
+//   2. loops over every lane of a set (a fixed trip count, so no scalar epilogue: the lanes past the
+//      set's joints hold harmless dummies) run the pair kinematics and the frame, then each element
+//      (element loop outside, lanes inside: one vector operation serves a vector's worth of joints;
+//      for the fully bonded set all elements of a lane in one loop, its frame and sums in registers),
+//      then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function
+//      multiversioning, picked at load time). For the mixed set the element loop is split: the normal
+//      load of every element (bonded: linear with its failure test; unbonded: linear if closed over
+//      its whole extent, nil if open), the elements the zero line cuts one joint at a time
+//      (unbonded_normal's closed form), then the shear with the Coulomb cap and the sums in element
+//      order;
 //   3. the lanes whose elements all held are written back, and every other joint (an element
 //      that breaks this step, a separated joint to release: its lane result is discarded, its
 //      state is still the old one) runs through FlatJointLaw::step as the generic bond phase
