@@ -13,7 +13,8 @@ namespace {
 std::uint64_t run_with_threads(int threads, std::size_t& breaks,
                                BondModel model = BondModel::parallel_bond, bool mixed_joints = false,
                                const SimParams& sim = SimParams{}, EnergyLedger* energy = nullptr,
-                               StepProfile* profile = nullptr, double unbonded_stiffness_ratio = 1.0) {
+                               StepProfile* profile = nullptr, double unbonded_stiffness_ratio = 1.0,
+                               std::int32_t radial_elements = 1, std::int32_t angular_elements = 4) {
 #ifdef _OPENMP
     omp_set_num_threads(threads);
 #else
@@ -28,6 +29,10 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
     bp.cohesion_mean = 2.0e6;
     bp.cohesion_std = 0.5e6;
     bp.model = model;
+    if (model == BondModel::flat_joint) {
+        bp.law<FlatJointLaw>().radial_elements = radial_elements;
+        bp.law<FlatJointLaw>().angular_elements = angular_elements;
+    }
     if (mixed_joints) {  // flat joints of every type, across gaps, with a friction angle
         bp.law<FlatJointLaw>().bonded_fraction = 0.6;
         bp.law<FlatJointLaw>().gapped_fraction = 0.2;
@@ -109,6 +114,39 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
         CHECK(b1 == b3);
         CHECK(h1 == c.hash);
         CHECK(b1 == c.breaks);
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+}
+
+// The same for other element counts: the fully bonded joints' kernel is compiled for each count
+// from 1 to 8 (core/flat_joint_pass.cpp), and a joint of more than 8 elements takes the scalar
+// kernel. Bonded and mixed joints, past the first breaks: the same state bits, breaks and
+// energies as the scalar kernel; the lanes take the joints for up to 8 elements, none above.
+TEST_CASE("flat joints of 1 to 12 elements: the vectorised pass gives the scalar kernel's bits", "[core][determinism]") {
+    const std::pair<std::int32_t, std::int32_t> shapes[] = {{1, 1}, {1, 3}, {2, 4}, {3, 4}};
+    for (const auto& [radial, angular] : shapes) {
+        for (const bool mixed : {false, true}) {
+            INFO(radial << " x " << angular << " elements, " << (mixed ? "bonded, gapped and slit" : "bonded"));
+            SimParams scalar;
+            scalar.vectorised_bond_passes = false;
+            std::size_t b_vec = 0, b_scalar = 0;
+            EnergyLedger e_vec, e_scalar;
+            StepProfile p_vec, p_scalar;
+            const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec, &p_vec, 1.0,
+                                                         radial, angular);
+            const std::uint64_t h_scalar = run_with_threads(2, b_scalar, BondModel::flat_joint, mixed, scalar, &e_scalar,
+                                                            &p_scalar, 1.0, radial, angular);
+            REQUIRE(b_vec > 0);
+            CHECK(h_vec == h_scalar);
+            CHECK(b_vec == b_scalar);
+            CHECK(e_vec.strain_bond == e_scalar.strain_bond);
+            CHECK(e_vec.friction == e_scalar.friction);
+            CHECK(e_vec.bond_break == e_scalar.bond_break);
+            if (radial * angular <= 8) CHECK(p_vec.bond_lane_steps > 10 * p_vec.bond_scalar_steps);
+            else CHECK(p_vec.bond_lane_steps == 0);
+        }
     }
 #ifdef _OPENMP
     omp_set_num_threads(2);
