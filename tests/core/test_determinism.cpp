@@ -54,6 +54,24 @@ std::uint64_t run_with_threads(int threads, std::size_t& breaks,
     return world.state_hash();
 }
 
+/// One flat-joint run through the vectorised pass and one through the law's scalar kernel, on
+/// 2 threads: hashes, break counts, energies and path counts of both.
+struct PathRuns {
+    std::uint64_t h_vec = 0, h_scalar = 0;
+    std::size_t b_vec = 0, b_scalar = 0;
+    EnergyLedger e_vec, e_scalar;
+    StepProfile p_vec, p_scalar;
+};
+
+PathRuns run_both_paths(bool mixed, double rho, std::int32_t radial = 1, std::int32_t angular = 4) {
+    SimParams scalar;
+    scalar.vectorised_bond_passes = false;
+    PathRuns r;
+    r.h_vec = run_with_threads(2, r.b_vec, BondModel::flat_joint, mixed, SimParams{}, &r.e_vec, &r.p_vec, rho, radial, angular);
+    r.h_scalar = run_with_threads(2, r.b_scalar, BondModel::flat_joint, mixed, scalar, &r.e_scalar, &r.p_scalar, rho, radial, angular);
+    return r;
+}
+
 }  // namespace
 
 TEST_CASE("state after N steps hashes the same with 1, 2 and 3 threads", "[core][determinism]") {
@@ -129,23 +147,15 @@ TEST_CASE("flat joints of 1 to 12 elements: the vectorised pass gives the scalar
     for (const auto& [radial, angular] : shapes) {
         for (const bool mixed : {false, true}) {
             INFO(radial << " x " << angular << " elements, " << (mixed ? "bonded, gapped and slit" : "bonded"));
-            SimParams scalar;
-            scalar.vectorised_bond_passes = false;
-            std::size_t b_vec = 0, b_scalar = 0;
-            EnergyLedger e_vec, e_scalar;
-            StepProfile p_vec, p_scalar;
-            const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec, &p_vec, 1.0,
-                                                         radial, angular);
-            const std::uint64_t h_scalar = run_with_threads(2, b_scalar, BondModel::flat_joint, mixed, scalar, &e_scalar,
-                                                            &p_scalar, 1.0, radial, angular);
-            REQUIRE(b_vec > 0);
-            CHECK(h_vec == h_scalar);
-            CHECK(b_vec == b_scalar);
-            CHECK(e_vec.strain_bond == e_scalar.strain_bond);
-            CHECK(e_vec.friction == e_scalar.friction);
-            CHECK(e_vec.bond_break == e_scalar.bond_break);
-            if (radial * angular <= 8) CHECK(p_vec.bond_lane_steps > 10 * p_vec.bond_scalar_steps);
-            else CHECK(p_vec.bond_lane_steps == 0);
+            const PathRuns r = run_both_paths(mixed, 1.0, radial, angular);
+            REQUIRE(r.b_vec > 0);
+            CHECK(r.h_vec == r.h_scalar);
+            CHECK(r.b_vec == r.b_scalar);
+            CHECK(r.e_vec.strain_bond == r.e_scalar.strain_bond);
+            CHECK(r.e_vec.friction == r.e_scalar.friction);
+            CHECK(r.e_vec.bond_break == r.e_scalar.bond_break);
+            if (radial * angular <= 8) CHECK(r.p_vec.bond_lane_steps > 10 * r.p_vec.bond_scalar_steps);
+            else CHECK(r.p_vec.bond_lane_steps == 0);
         }
     }
 #ifdef _OPENMP
@@ -164,32 +174,26 @@ TEST_CASE("flat joints: the vectorised pass gives the scalar kernel's bits", "[c
     const std::pair<bool, double> joint_sets[] = {{false, 1.0}, {true, 1.0}, {true, 0.4}};
     for (const auto& [mixed, rho] : joint_sets) {
         INFO((mixed ? "bonded, gapped and slit" : "bonded") << ", rho " << rho);
-        SimParams scalar;
-        scalar.vectorised_bond_passes = false;
-        std::size_t b_vec = 0, b_scalar = 0;
-        EnergyLedger e_vec, e_scalar;
-        StepProfile p_vec, p_scalar;
-        const std::uint64_t h_vec = run_with_threads(2, b_vec, BondModel::flat_joint, mixed, SimParams{}, &e_vec, &p_vec, rho);
-        const std::uint64_t h_scalar =
-            run_with_threads(2, b_scalar, BondModel::flat_joint, mixed, scalar, &e_scalar, &p_scalar, rho);
+        const PathRuns r = run_both_paths(mixed, rho);
         // every acting joint-step counted once, by the path that took it
-        CHECK(p_scalar.bond_lane_steps == 0);
-        CHECK(p_vec.bond_lane_steps + p_vec.bond_scalar_steps == p_scalar.bond_scalar_steps);
-        const double scalar_share = static_cast<double>(p_vec.bond_scalar_steps) / static_cast<double>(p_scalar.bond_scalar_steps);
+        CHECK(r.p_scalar.bond_lane_steps == 0);
+        CHECK(r.p_vec.bond_lane_steps + r.p_vec.bond_scalar_steps == r.p_scalar.bond_scalar_steps);
+        const double scalar_share =
+            static_cast<double>(r.p_vec.bond_scalar_steps) / static_cast<double>(r.p_scalar.bond_scalar_steps);
         INFO("scalar share " << scalar_share);
         CHECK(scalar_share < 0.01);
         CHECK(scalar_share > 0.0);
-        REQUIRE(b_vec > 0);
-        CHECK(h_vec == h_scalar);
-        CHECK(b_vec == b_scalar);
-        CHECK(e_vec.kinetic == e_scalar.kinetic);
-        CHECK(e_vec.strain_contact == e_scalar.strain_contact);
-        CHECK(e_vec.strain_bond == e_scalar.strain_bond);
-        CHECK(e_vec.damping == e_scalar.damping);
-        CHECK(e_vec.friction == e_scalar.friction);
-        CHECK(e_vec.bond_break == e_scalar.bond_break);
-        CHECK(e_vec.boundary_work == e_scalar.boundary_work);
-        CHECK(e_vec.strain_bond > 0.0);
+        REQUIRE(r.b_vec > 0);
+        CHECK(r.h_vec == r.h_scalar);
+        CHECK(r.b_vec == r.b_scalar);
+        CHECK(r.e_vec.kinetic == r.e_scalar.kinetic);
+        CHECK(r.e_vec.strain_contact == r.e_scalar.strain_contact);
+        CHECK(r.e_vec.strain_bond == r.e_scalar.strain_bond);
+        CHECK(r.e_vec.damping == r.e_scalar.damping);
+        CHECK(r.e_vec.friction == r.e_scalar.friction);
+        CHECK(r.e_vec.bond_break == r.e_scalar.bond_break);
+        CHECK(r.e_vec.boundary_work == r.e_scalar.boundary_work);
+        CHECK(r.e_vec.strain_bond > 0.0);
     }
 #ifdef _OPENMP
     omp_set_num_threads(2);
