@@ -58,11 +58,32 @@ struct BondPass {
     std::size_t stride;
     const std::vector<BondConstants>& constants;   ///< per bond
     const std::vector<BondParams>& family_params;  ///< per ParallelBond::family_pair
-    std::vector<PairOutput>& pair_out;             ///< per pair slot (ParallelBond::slot): add into it
+    std::vector<PairOutput>& pair_out;             ///< per pair slot (ParallelBond::slot): bond_output()
     std::vector<BreakEvent>& breaks;               ///< append in bond order
     const SimParams& sim;
     std::int64_t step;
     double time;  ///< [s]
+    bool replaces_contact;  ///< the bonds replace their pairs' contacts (BondParams::bond_replaces_contact)
 };
+
+/// An acting bond's force and moment on j into its pair's slot. A bond that replaces its pair's
+/// contact owns the slot (the contact phase leaves it alone: World::compute_contacts) and sets
+/// it; one beside the contact adds to the contact's. Setting gives the bits of adding to the +0
+/// the contact phase used to write, but for the sign of a zero, which no particle's sum can see
+/// (a sum that starts at +0 never becomes -0, and adding a zero of either sign to it changes no bit).
+inline void bond_output(PairOutput& out, const Vec3& force_j, const Vec3& torque_j, bool replaces_contact) {
+    if (replaces_contact) {
+        out.force_j = force_j;
+        out.torque_j = torque_j;
+    } else {
+        out.force_j += force_j;
+        out.torque_j += torque_j;
+    }
+}
+
+/// The slot of a bond released this step: zero if the bond owned it (bond_output).
+inline void released_bond_output(PairOutput& out, bool replaces_contact) {
+    if (replaces_contact) out = {};
+}
 
 }  // namespace gradem

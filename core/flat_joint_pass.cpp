@@ -632,9 +632,7 @@ struct FlatJointPass {
         BondStepResult r;
         r.stored = track ? L.stored[l] : 0.0;
         r.slip = track ? L.slip[l] : 0.0;
-        PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
-        out.force_j += lane(L.force, l);
-        out.torque_j += lane(L.torque, l);
+        bond_output(pass.pair_out[static_cast<std::size_t>(b.slot)], lane(L.force, l), lane(L.torque, l), pass.replaces_contact);
         return r;
     }
 
@@ -656,10 +654,9 @@ struct FlatJointPass {
                                                              s.xa + kin.arm_a + x.offset, kin.normal, sec.radius, x.tensile_stress,
                                                              x.shear_stress, x.element});
         breaks.clear();
-        if (r.failure != BondState::intact) return r;
         PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
-        out.force_j += r.force_j;
-        out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
+        if (r.failure != BondState::intact) released_bond_output(out, pass.replaces_contact);
+        else bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, pass.replaces_contact);
         return r;
     }
 };

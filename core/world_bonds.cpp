@@ -109,7 +109,7 @@ void World::refresh_bond_constants() {
 
 BondPass World::bond_pass() {
     return {particles_, bonds_, bond_side_, bond_side_stride_, bond_const_, bond_family_params_,
-            pair_out_, breaks_, sim_, step_, time_};
+            pair_out_, breaks_, sim_, step_, time_, bond_params_.bond_replaces_contact()};
 }
 
 // A law with its own pass over every bond (Law::compute_all, core/bond_pass.hpp) runs it; the
@@ -133,6 +133,7 @@ World::BondEnergy World::compute_bonds_with(double dt) {
     std::vector<typename Law::Context> contexts;  // one per bond family pair
     for (const BondParams& p : bond_family_params_) contexts.push_back(Law::context(p, sim_.track_energy));
     const std::size_t stride = bond_side_stride_;
+    const bool replaces = bond_params_.bond_replaces_contact();
     for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
         BondEnergy e;
         std::vector<BondBreak> breaks;
@@ -162,10 +163,12 @@ World::BondEnergy World::compute_bonds_with(double dt) {
                          x.shear_stress, x.element});
                 breaks.clear();
             }
-            if (r.failure != BondState::intact) continue;
             PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
-            out.force_j += r.force_j;
-            out.torque_j += cross(kin.arm_b, r.force_j) + r.moment_j;
+            if (r.failure != BondState::intact) {
+                released_bond_output(out, replaces);
+                continue;
+            }
+            bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, replaces);
         }
         partial[static_cast<std::size_t>(blk)] = e;
     });

@@ -81,3 +81,29 @@ TEST_CASE("soft bond / flat joint replacing the contact: once broken in tension,
         CHECK(force_on_b(rig) == Approx(contact_k * delta).epsilon(1e-9));
     }
 }
+
+TEST_CASE("soft bond / flat joint replacing the contact: the bond owns the pair's force, which is zero in "
+          "the step the bond is released in tension", "[core][soft_bond][flat_joint]") {
+    // The contacts phase skips a pair whose acting bond replaces the contact and the bond phase
+    // sets the pair's force (core/bond_pass.hpp bond_output): in the step the bond is released,
+    // with the pair open, no spring acts on it, so the force must be exactly 0, not the bond's
+    // force of the step before.
+    for (BondModel model : {BondModel::soft_bond, BondModel::flat_joint}) {
+        INFO(bond_model_name(model));
+        BondRig rig(one_spring_set(model, true), 0.0);
+        const double onset = kStrength / rig.stiffness.normal;  // δ_c [m]
+        const int steps = 3000;
+        rig.set_motion({3.0 * onset / (steps * rig.dt), 0, 0}, {});
+        double tension_before = 0.0;  // |force on B| the step before the release [N]
+        int step = 0;
+        for (; step < steps && bond_acts(rig.bond()); ++step) {
+            tension_before = std::fabs(force_on_b(rig));
+            rig.world.step();
+        }
+        REQUIRE(step < steps);  // released while pulled
+        REQUIRE(tension_before > 0.0);
+        CHECK(rig.opening() > 0.0);
+        CHECK(force_on_b(rig) == 0.0);
+        CHECK(norm(rig.world.particles().torque[1]) == 0.0);
+    }
+}
