@@ -5,7 +5,8 @@
 //   * intact, compressed by δ: the pair's force is exactly k̄_n Ā δ (replaces_contact = true), or
 //     (k̄_n Ā + k_n) δ with the contact in parallel (replaces_contact = false);
 //   * broken (pulled past its cut-off / every element broken), then compressed by δ: exactly the
-//     linear contact's k_n δ.
+//     linear contact's k_n δ;
+//   * the step the bond is released in tension (the pair open): exactly zero force and moment.
 #include <catch2/catch.hpp>
 #include <cmath>
 
