@@ -16,6 +16,7 @@
 #include "calibrate/cube_model.hpp"
 #include "calibrate/execution/thread_pool.hpp"
 #include "common/input_error.hpp"
+#include "common/number_format.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 #include "experiments/config/tension_config.hpp"
 
@@ -102,7 +103,7 @@ public:
         if (timeout_s > 0.0)
             watchdog = [start, timeout_s](const exp::CurvePoint&, double) {
                 if (std::chrono::duration<double>(Clock::now() - start).count() > timeout_s)
-                    throw Timeout("timed out after " + std::to_string(timeout_s) + " s");
+                    throw Timeout("timed out after " + common::format_significant(timeout_s, 6) + " s");
             };
         RunOutcome out;
         try {

@@ -4,6 +4,7 @@
 
 #include "calibrate/parameters.hpp"
 #include "calibrate/study/study_models.hpp"
+#include "common/number_format.hpp"
 
 namespace gradem::cal {
 
@@ -92,8 +93,9 @@ StageValidation validate_point(const CalibrationProblem& problem, const Validate
     v.evaluation = evaluate_on_set(vp, model, SpecimenSet::validation, executor, ledger, point, sands, "validation", v.runs,
                                    v.from_ledger);
     if (log)
-        log("validation on " + std::to_string(vp.seeds.size()) + " unseen seeds, edge " + std::to_string(vp.base.specimen.genesis.edge * 1e3) +
-            " mm: " + std::to_string(v.runs) + " runs (" + std::to_string(v.from_ledger) + " from the ledger)" +
+        log("validation on " + std::to_string(vp.seeds.size()) + (vp.seeds.size() == 1 ? " unseen seed" : " unseen seeds") +
+            ", edge " + common::format_significant(vp.base.specimen.genesis.edge * 1e3, 4) + " mm: " + std::to_string(v.runs) +
+            " runs (" + std::to_string(v.from_ledger) + " from the ledger)" +
             (v.evaluation.failed ? ", failed: " + v.evaluation.failure : ""));
     return v;
 }

@@ -723,6 +723,11 @@ std::string curves_csv(const CalibrationProblem& p, const CalibrationResult& r) 
     return c.str();
 }
 
+namespace {
+/// The one-line result marks each target outside its tolerance, so a reader sees which miss.
+const char* miss_mark(const TargetRow& row) { return row.met ? "" : " (miss)"; }
+}  // namespace
+
 std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r) {
     std::ostringstream b;
     b << "calibrate: " << to_string(p.mode) << "/" << to_string(p.solver.method) << ", " << r.runs_used << " DEM runs ("
@@ -734,7 +739,7 @@ std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r
             b << " validation " << (validation_holds(rows) ? "holds" : "MISSES");
             for (const TargetRow& row : rows)
                 if (row.role == "validation" && std::isfinite(row.rel_error))
-                    b << " " << row.sand << " " << short_label(row.q) << " " << pct(row.rel_error);
+                    b << " " << row.sand << " " << short_label(row.q) << " " << pct(row.rel_error) << miss_mark(row);
             b << ";";
         }
         const ParameterSpace space(p.parameters, p.base.material);
@@ -744,7 +749,7 @@ std::string brief_report(const CalibrationProblem& p, const CalibrationResult& r
         for (const TargetRow& row : target_rows(p, st))
             if (std::isfinite(row.rel_error) && is_result_row(st, row.role))
                 b << "; " << row.sand << " " << short_label(row.q) << " " << pct(row.rel_error)
-                  << (row.q == Quantity::tension ? " (sigc/sigt " + fmt(row.ratio, 3) + ")" : "");
+                  << (row.q == Quantity::tension ? " (sigc/sigt " + fmt(row.ratio, 3) + ")" : "") << miss_mark(row);
     }
     return b.str();
 }

@@ -21,6 +21,7 @@
 #include "calibrate/execution/code_version.hpp"
 #include "calibrate/execution/run_message.hpp"
 #include "common/hash.hpp"
+#include "common/number_format.hpp"
 
 namespace gradem::cal::mpi {
 namespace {
@@ -244,7 +245,7 @@ MpiExecutor::MpiExecutor(CubeModel& model, int threads, double handshake_timeout
             if (w.host == "?") w.lost = true;
         g_rank_lost = true;
         problems += "\n  " + std::to_string(n - 1 - received) + " worker rank(s) said nothing within " +
-                    std::to_string(handshake_timeout_s_) + " s";
+                    common::format_significant(handshake_timeout_s_, 6) + " s";
     }
     if (!problems.empty()) {
         stop_all("rank 0 refused the job");
@@ -274,7 +275,7 @@ void MpiExecutor::prepare(const PackingSeeds& seeds, const Log& log) {
         const double left = handshake_timeout_s_ - std::chrono::duration<double>(Clock::now() - start).count();
         const auto m = wait_message(w.rank, std::max(left, 1e-3));
         if (!m) {
-            problems += "\n  " + where(w.rank, w.host) + " did not load the packings within " + std::to_string(handshake_timeout_s_) + " s";
+            problems += "\n  " + where(w.rank, w.host) + " did not load the packings within " + common::format_significant(handshake_timeout_s_, 6) + " s";
             workers_[static_cast<std::size_t>(w.rank - 1)].lost = g_rank_lost = true;
             continue;
         }
@@ -398,7 +399,7 @@ private:
                 worker.lost = g_rank_lost = true;
                 RunOutcome o;
                 o.status = OutcomeStatus::timeout;
-                o.reason = where(worker.rank, worker.host) + " sent no result within " + std::to_string(limit_) +
+                o.reason = where(worker.rank, worker.host) + " sent no result within " + common::format_significant(limit_, 6) +
                            " s (timeout_s + grace); the rank is no longer used";
                 o.wall_seconds = limit_;
                 const std::size_t index = flights_[w]->index;

@@ -19,6 +19,7 @@
 #include "common/hash.hpp"
 #include "common/input_error.hpp"
 #include "common/json_file.hpp"
+#include "common/number_format.hpp"
 
 namespace gradem::cal {
 namespace {
@@ -88,7 +89,7 @@ CalibratedPoint load_calibrated_point(const fs::path& summary_json) {
             throw InputError(where, 0, "has no calibrated value for parameter '" + spec.name + "'");
         const double v = (*found)["value"].get<double>();
         if (spec.free && !(v >= spec.lower && v <= spec.upper))
-            throw InputError(where, 0, "parameter '" + spec.name + "' = " + std::to_string(v) +
+            throw InputError(where, 0, "parameter '" + spec.name + "' = " + common::format_significant(v, 6) +
                                            " is outside the config's bounds: the config changed since the calibration");
         spec.start = v;
     }

@@ -2,7 +2,9 @@
 // on unseen seeds after the fit, reported first, and a result that does not hold there says so;
 // bad [validation] tables are refused before anything runs.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <regex>
 
 #include "calibrate/problem.hpp"
 #include "calibrate/validation.hpp"
@@ -60,6 +62,10 @@ TEST_CASE("validation on unseen seeds: run after the fit, apart from the budget,
     REQUIRE(st.validation.evaluation.runs.size() == 4);
     CHECK(st.validation.evaluation.values == st.solution.best);
     CHECK(r.runs_used <= problem.solver.max_runs);
+    // The milestone line gives the seeds and the edge as a person writes them ("2.5 mm", not "2.500000").
+    const std::string milestone = "validation on 2 unseen seeds, edge " +
+                                  common::format_significant(problem.validation.edge * 1e3, 4) + " mm: 4 runs (0 from the ledger)";
+    CHECK(std::count(r.log.begin(), r.log.end(), milestone) == 1);
     // The stand-in does not depend on the specimen, so the result holds on unseen seeds.
     const nlohmann::json summary = report::summary_json(problem, r);
     CHECK(summary["stages"][0]["validation"]["holds"] == true);
@@ -97,7 +103,13 @@ TEST_CASE("a result that does not hold on the validation specimens says so plain
             CHECK(t["met"] == false);
         }
     CHECK_THAT(report::summary_markdown(problem, r), Catch::Contains("does NOT hold on specimens the fit never saw"));
-    CHECK_THAT(report::brief_report(problem, r), Catch::Contains("validation MISSES"));
+    const std::string brief = report::brief_report(problem, r);
+    CHECK_THAT(brief, Catch::Contains("validation MISSES"));
+    // The 15 % stiffer validation specimens miss in E, each sand's error marked; no peak is marked.
+    INFO(brief);
+    CHECK(std::regex_search(brief, std::regex(R"(validation MISSES pre-blended E \+1[45]\.[0-9] % \(miss\))")));
+    CHECK(std::regex_search(brief, std::regex(R"(Van Buren E \+1[45]\.[0-9] % \(miss\))")));
+    CHECK_FALSE(std::regex_search(brief, std::regex(R"(peak [-+][0-9.]+ % \(miss\))")));
     bool stated = false;
     for (const auto& u : summary["stages"][0]["unmet_targets"])
         stated = stated || u.get<std::string>().find("validation specimens") != std::string::npos;
