@@ -275,7 +275,8 @@ void MpiExecutor::prepare(const PackingSeeds& seeds, const Log& log) {
         const double left = handshake_timeout_s_ - std::chrono::duration<double>(Clock::now() - start).count();
         const auto m = wait_message(w.rank, std::max(left, 1e-3));
         if (!m) {
-            problems += "\n  " + where(w.rank, w.host) + " did not load the packings within " + common::format_significant(handshake_timeout_s_, 6) + " s";
+            problems += "\n  " + where(w.rank, w.host) + " did not load the packings within " +
+                        common::format_significant(handshake_timeout_s_, 6) + " s";
             workers_[static_cast<std::size_t>(w.rank - 1)].lost = g_rank_lost = true;
             continue;
         }
