@@ -1,6 +1,7 @@
 """report.html of `gradem calibrate`: simulated against lab stress–strain curves per sand, the
 convergence of the objective and the parameters, the calibrated parameters with their standard
-errors within their bounds, and the error of every target. Inputs: summary.json, convergence.csv
+errors within their bounds, the error of every target, and the curves' shape index D beside the
+lab's. Inputs: summary.json, convergence.csv
 and curves.csv of the calibration's output folder."""
 
 import math
@@ -53,6 +54,14 @@ def build(out_dir):
                 errors_caption + "; hatched: predicted (not fitted) sands."
                 + (f" The scales were set on {specimens_text(scale_up)}: the fit's point run there, its moduli × "
                    f"{fmt(scale_up.get('alpha'), 4)} and strengths × {fmt(scale_up.get('beta'), 4)}." if scale_up.get("done") else ""))
+    shape_rows = shape_index_rows(stages)
+    if shape_rows:
+        page.figure(shape_index_figure(sands, shape_rows), "Shape index D = E·ε_peak/σ_peak per sand, simulated and lab",
+                    "D is the curve's shape: 1 for a line straight to its peak, more the more it bends over before it. "
+                    "Scaling every modulus and every strength (the calibration's scales) leaves it unchanged, so only the "
+                    "bond law's shape parameters move it, and a strain at peak that misses with D off the lab's is the "
+                    "model's shape, not the fit. Bars: the simulated seed means per specimen set; black line: the lab's D "
+                    "from its means. " + shape_index_text(sands, shape_rows))
     tension = summary.get("tension_target") or {}
     if tension.get("source") not in (None, "none"):
         page.figure(ratio_figure(sands, stages, tension), "Compressive over tensile strength per sand",
@@ -322,6 +331,62 @@ def ratio_figure(sands, stages, tension):
     ax.set_ylim(bottom=0)
     ax.set_title("Compressive over direct-tension strength (simulated)")
     ax.legend(loc="upper left", fontsize=8.5)
+    return to_svg(fig)
+
+
+def shape_index_rows(stages):
+    """The stages' shape-index rows (sand, role, lab, simulated), labelled by stage when there are several."""
+    rows = []
+    for st in stages:
+        for r in st.get("shape_index_d") or []:
+            role = r.get("role", "?") + (f" ({st['label']})" if len(stages) > 1 else "")
+            rows.append((r.get("sand"), role, finite(r.get("lab")), finite(r.get("simulated"))))
+    return rows
+
+
+def two_decimals(v):
+    """D as the figure labels it ('–' when missing)."""
+    return f"{v:.2f}" if math.isfinite(v) else "–"
+
+
+def shape_index_text(sands, rows):
+    """Per sand: the lab's D and each specimen set's simulated D, as the figure shows them."""
+    parts = []
+    for sand in sands:
+        mine = [r for r in rows if r[0] == sand]
+        if mine:
+            parts.append(f"{sand}: lab {two_decimals(mine[0][2])}, " + ", ".join(f"{role} {two_decimals(sim)}" for _, role, _, sim in mine))
+    return "; ".join(parts) + "."
+
+
+def shape_index_figure(sands, rows):
+    """D per sand: a bar per specimen set (fitted, validation, ...) beside the lab's D."""
+    fig, (ax,) = new_figure(1, width=10.0, height=3.6)
+    roles = list(dict.fromkeys(role for _, role, _, _ in rows))
+    width = 0.8 / max(1, len(roles))
+    for i, sand in enumerate(sands):
+        mine = {role: (lab, sim) for s, role, lab, sim in rows if s == sand}
+        if not mine:
+            continue
+        for k, role in enumerate(roles):
+            if role not in mine:
+                continue
+            sim = mine[role][1]
+            x = i - 0.4 + width * (k + 0.5)
+            ax.bar([x], [sim if math.isfinite(sim) else 0], width * 0.9, color=sand_color(i),
+                   alpha=0.85 if k == 0 else 0.45, hatch=None if k == 0 else "//", label=role if i == 0 else None)
+            if math.isfinite(sim):  # inside the bar's top, clear of the lab's line
+                ax.text(x, 0.96 * sim, f"{sim:.2f}", ha="center", va="top", fontsize=9, color="white" if k == 0 else "black")
+        lab = next(iter(mine.values()))[0]
+        ax.plot([i - 0.45, i + 0.45], [lab, lab], color="black", lw=2, label="lab" if i == 0 else None)
+        ax.text(i + 0.46, lab, f"lab {lab:.2f}", ha="left", va="center", fontsize=9)
+    ax.set_xticks(range(len(sands)))
+    ax.set_xticklabels(sands)
+    ax.set_xlim(-0.6, len(sands) - 0.15)
+    ax.set_ylabel("D = E·ε_peak / σ_peak [-]")
+    ax.set_ylim(bottom=0)
+    ax.set_title("Shape index of the stress–strain curve")
+    ax.legend(loc="lower right", fontsize=8.5)
     return to_svg(fig)
 
 

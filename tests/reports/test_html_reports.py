@@ -24,7 +24,7 @@ import sys
 import tempfile
 
 SKIP = 77
-EXPECTED_FIGURES = {"lab": 3, "lab_tension": 2, "compress": 4, "calibrate": 5}
+EXPECTED_FIGURES = {"lab": 3, "lab_tension": 2, "compress": 4, "calibrate": 6}
 # figures of the study report per study kind (reports/html/study_report.py)
 STUDY_FIGURES = {"gradation_effect": 2, "sensitivity": 1, "resolution": 1, "fines_truncation": 2, "model_form": 3}
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -210,6 +210,16 @@ def case_calibrate(args, browser, work):
     check("validation specimens, which the fit never saw" in text and "on the scale-up specimens" in text
           and "3.5 mm cubes, packing seeds 21" in text, f"{page}: no validation errors figure or scale-up caption")
     check("pre-blended: 1, 2; Van Buren: 1, 2, 3" in text, f"{page}: the run table does not give each sand's own packing seeds")
+    # The shape index figure's caption gives each sand's D as summary.json has it: the lab's, then each
+    # specimen set's (fitted, scale-up, validation).
+    summary = json.load(open(os.path.join(out, "summary.json"), encoding="utf-8"))
+    rows = summary["stages"][0]["shape_index_d"]
+    check({r["role"] for r in rows} == {"fitted", "scale-up", "validation"}, f"{out}/summary.json: shape index roles {rows}")
+    for sand in ("pre-blended", "Van Buren"):
+        mine = [r for r in rows if r["sand"] == sand]
+        want = f"{sand}: lab {mine[0]['lab']:.2f}, " + ", ".join(f"{r['role']} {r['simulated']:.2f}" for r in mine)
+        found = re.search(re.escape(sand) + r": lab [^;]*", text)
+        check(want in text, f"{page}: the shape index caption does not say '{want}' (it says '{found and found.group(0)}')")
     check_self_contained(page)
     return check_page_in_browser(browser, page, work, EXPECTED_FIGURES["calibrate"], banner=True)
 
