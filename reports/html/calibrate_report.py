@@ -1,8 +1,7 @@
 """report.html of `gradem calibrate`: simulated against lab stress–strain curves per sand, the
 convergence of the objective and the parameters, the calibrated parameters with their standard
 errors within their bounds, the error of every target, and the curves' shape index D beside the
-lab's. Inputs: summary.json, convergence.csv
-and curves.csv of the calibration's output folder."""
+lab's. Inputs: summary.json, convergence.csv and curves.csv of the calibration's output folder."""
 
 import math
 import os
@@ -355,7 +354,8 @@ def shape_index_text(sands, rows):
     for sand in sands:
         mine = [r for r in rows if r[0] == sand]
         if mine:
-            parts.append(f"{sand}: lab {two_decimals(mine[0][2])}, " + ", ".join(f"{role} {two_decimals(sim)}" for _, role, _, sim in mine))
+            sets = ", ".join(f"{role} {two_decimals(sim)}" for _, role, _, sim in mine)
+            parts.append(f"{sand}: lab {two_decimals(mine[0][2])}, {sets}")
     return "; ".join(parts) + "."
 
 
@@ -376,10 +376,10 @@ def shape_index_figure(sands, rows):
             ax.bar([x], [sim if math.isfinite(sim) else 0], width * 0.9, color=sand_color(i),
                    alpha=0.85 if k == 0 else 0.45, hatch=None if k == 0 else "//", label=role if i == 0 else None)
             if math.isfinite(sim):  # inside the bar's top, clear of the lab's line
-                ax.text(x, 0.96 * sim, f"{sim:.2f}", ha="center", va="top", fontsize=9, color="white" if k == 0 else "black")
+                ax.text(x, 0.96 * sim, two_decimals(sim), ha="center", va="top", fontsize=9, color="white" if k == 0 else "black")
         lab = next(iter(mine.values()))[0]
         ax.plot([i - 0.45, i + 0.45], [lab, lab], color="black", lw=2, label="lab" if i == 0 else None)
-        ax.text(i + 0.46, lab, f"lab {lab:.2f}", ha="left", va="center", fontsize=9)
+        ax.text(i + 0.46, lab, f"lab {two_decimals(lab)}", ha="left", va="center", fontsize=9)
     ax.set_xticks(range(len(sands)))
     ax.set_xticklabels(sands)
     ax.set_xlim(-0.6, len(sands) - 0.15)
