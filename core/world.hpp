@@ -2,11 +2,12 @@
 // The World owns the state of one DEM simulation and advances it. World::step() reads as the
 // list of phases of one cycle (as PFC and Box2D's b2World_Step do it):
 //   1. neighbours  - rebuild the Verlet pair list when particles moved more than half the skin;
-//   2. contacts    - linear contact law for every pair, into that pair's own output slot;
+//   2. contacts    - linear contact law for every pair, into that pair's own output slot
+//                    (a pair whose acting bond replaces its contact is skipped);
 //   3. bonds       - the bond law (BondParams::model; core/bond_models.hpp) for every acting
 //                    bond, added into its pair's slot, or set there if the bond replaces the
-//                    pair's contact (phase 2 then skips the pair; with the parallel bond, 2 and 3 are one
-//                    vectorised pass over the pairs, bitwise the same: world_pairs.cpp);
+//                    pair's contact (with the parallel bond, 2 and 3 are one vectorised pass
+//                    over the pairs, bitwise the same: world_pairs.cpp);
 //   4. walls       - linear contact with each platen, into per-wall-contact slots;
 //   5. gather      - each particle sums its slots in a fixed order into force/torque;
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion

@@ -125,7 +125,7 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
 // spring until it is released, and the bond phase, which runs after this one, sets its slot (zero
 // in the step it is released: bond_output() in core/bond_pass.hpp), so a bond broken this step
 // lets the contact act from the next step on. Skipping those pairs saves their particle loads and
-// slot stores: 1.15x on the flat joint's step (bench/README.md).
+// slot stores: 1.10-1.16x on the flat joint's step (bench/README.md).
 void World::compute_contacts(double dt, double& strain, double& slip) {
     const auto m = static_cast<std::int64_t>(pairs_.size());
     const bool bond_replaces = bond_params_.bond_replaces_contact();
