@@ -46,6 +46,10 @@ Evaluator::Evaluator(const CalibrationProblem& problem, const ParameterSpace& sp
 }
 
 
+bool Evaluator::runs_test(CubeTest test, std::uint64_t seed) const {
+    return test == primary_ || problem_.runs_tension_on(seed);
+}
+
 void Evaluator::set_tension_companion(bool on) {
     tests_ = on ? tests_of(problem_, primary_) : std::vector<CubeTest>{primary_};
 }
@@ -72,7 +76,7 @@ int Evaluator::runs_needed(const std::vector<std::vector<double>>& points, const
         for (std::size_t s : sands)
             for (std::uint64_t seed : problem_.seeds_of(s))
                 for (CubeTest t : tests())
-                    if (const std::string key = run_key(m, s, seed, t); !used_.count(key)) fresh.insert(key);
+                    if (const std::string key = run_key(m, s, seed, t); runs_test(t, seed) && !used_.count(key)) fresh.insert(key);
     }
     return static_cast<int>(fresh.size());
 }
@@ -126,7 +130,8 @@ std::vector<Evaluator::Job> Evaluator::jobs_of(const std::vector<std::vector<dou
         const exp::MaterialParams m = space_.material(points[p]);
         for (std::size_t s : sands)
             for (std::uint64_t seed : problem_.seeds_of(s))
-                for (CubeTest t : tests()) jobs.push_back({p, s, seed, t, m, run_key(m, s, seed, t), {}, false});
+                for (CubeTest t : tests())
+                    if (runs_test(t, seed)) jobs.push_back({p, s, seed, t, m, run_key(m, s, seed, t), {}, false});
     }
     return jobs;
 }

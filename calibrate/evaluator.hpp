@@ -45,7 +45,8 @@ struct Evaluation {
     std::vector<double> values;        ///< free parameters, config units
     std::vector<SandOutcome> sands;    ///< one per evaluated sand
     std::vector<RunOutcome> runs;      ///< the primary test's, sand-major, then seed
-    std::vector<RunOutcome> tension_runs;  ///< the companion tension tests, same order (empty: none)
+    std::vector<RunOutcome> tension_runs;  ///< the companion tension tests, same order, of the seeds that run one
+                                           ///< (CalibrationProblem::runs_tension_on; empty: none)
     bool failed = false;
     std::string failure;
     std::string label;                 ///< what the solver asked for ("start", "rescaled", "fd", ...)
@@ -105,6 +106,9 @@ public:
     [[nodiscard]] double seconds() const;
 
 private:
+    /// Whether `seed` runs `test`: the primary test always, the tension companion on the
+    /// problem's tension seeds (CalibrationProblem::runs_tension_on).
+    [[nodiscard]] bool runs_test(CubeTest test, std::uint64_t seed) const;
     /// The tests each (point, sand, seed) runs: the primary one, then its tension companion.
     [[nodiscard]] const std::vector<CubeTest>& tests() const { return tests_; }
     std::string run_key(const exp::MaterialParams& m, std::size_t sand, std::uint64_t seed, CubeTest test) const;

@@ -356,6 +356,7 @@ SpecimenSetSpec read_specimen_set(Context& ctx, const toml::table& root, const C
     v.edge = p.base.specimen.genesis.edge;
     s.real("edge_mm", v.edge, 1e-3);
     v.seeds = read_seeds(s, "seeds", {});
+    if (table == "validation") v.tension_seeds = read_seeds(s, "tension_seeds", {});
     s.finish();
     const int edge_line = ctx.keys[table + ".edge_mm"].line, seeds_line = ctx.keys[table + ".seeds"].line;
     if (v.seeds.empty())
@@ -406,6 +407,15 @@ void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& 
             throw InputError(ctx.file, seeds_line, "key 'validation.seeds': seed " + std::to_string(seed) +
                                                        " is also a scale-up seed (scale_up.seeds): validation specimens must be unseen");
     }
+    const int tension_line = ctx.keys["validation.tension_seeds"].line;
+    for (std::uint64_t seed : v.tension_seeds)
+        if (!contains(v.seeds, seed))
+            throw InputError(ctx.file, tension_line, "key 'validation.tension_seeds': seed " + std::to_string(seed) +
+                                                         " is not a validation seed (validation.seeds): the tension test runs on a "
+                                                         "validation cube beside its compression test");
+    if (!v.tension_seeds.empty() && !p.tension.fitted())
+        throw InputError(ctx.file, tension_line, "key 'validation.tension_seeds' needs a direct-tension target ([targets] tension): "
+                                                 "without one no tension test runs");
 }
 
 void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
@@ -536,6 +546,10 @@ PackingSeeds CalibrationProblem::packing_seeds() const {
     return out;
 }
 
+bool CalibrationProblem::runs_tension_on(std::uint64_t seed) const {
+    return tension_seeds.empty() || contains(tension_seeds, seed);
+}
+
 int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) const {
     std::size_t n = 0;
     for (std::size_t sand : of_sands) n += seeds_of(sand).size();
@@ -602,6 +616,7 @@ CalibrationProblem on_specimens(const CalibrationProblem& problem, const Specime
     v.base.specimen.genesis.edge = set.edge;
     v.seeds = set.seeds;
     v.sand_seeds.clear();
+    v.tension_seeds = set.tension_seeds;
     v.scale_up = {};
     v.validation = {};
     v.solver.max_runs = 1 << 30;

@@ -134,6 +134,10 @@ struct SolverSettings {
 struct SpecimenSetSpec {
     double edge = 0.0;                 ///< [m] cube edge of the set's specimens (0: the fit's)
     std::vector<std::uint64_t> seeds;  ///< their packing seeds (empty: no such set)
+    /// The seeds whose compression test has its direct-tension companion ([validation]
+    /// tension_seeds; empty: every seed): σt scatters a few per cent between cubes, so fewer
+    /// cubes test it than the strain at peak needs.
+    std::vector<std::uint64_t> tension_seeds;
     [[nodiscard]] bool enabled() const { return !seeds.empty(); }
 };
 using ValidationSpec = SpecimenSetSpec;
@@ -148,6 +152,9 @@ struct CalibrationProblem {
     std::string calibrate_on;             ///< study mode: the sand calibrated on
     std::vector<std::uint64_t> seeds = {1, 2};   ///< packing seeds of every sand without its own
     std::vector<std::vector<std::uint64_t>> sand_seeds;  ///< a sand's own seeds (index = sand; empty: `seeds`)
+    /// The seeds whose compression runs have their tension companion when tension is a target
+    /// (empty: every seed; a validation's tension_seeds: validation_problem()).
+    std::vector<std::uint64_t> tension_seeds;
     std::vector<ParameterSpec> parameters;
     std::filesystem::path lab_results;
     std::vector<SandTargets> targets;     ///< same order as sands
@@ -169,6 +176,9 @@ struct CalibrationProblem {
     /// The runs of one test at one point: the seeds of `of_sands` (default: every sand) summed.
     [[nodiscard]] int runs_per_test(const std::vector<std::size_t>& of_sands) const;
     [[nodiscard]] int runs_per_test() const;
+
+    /// Whether the compression run of packing seed `seed` has its tension companion (tension_seeds).
+    [[nodiscard]] bool runs_tension_on(std::uint64_t seed) const;
 
     /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
     [[nodiscard]] std::vector<Quantity> fitted_quantities() const;

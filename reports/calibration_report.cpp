@@ -117,11 +117,20 @@ bool is_result_row(const CalibrationStage& st, const std::string& role) {
     return scaled_up(st) ? role == "scale-up" : role == "fitted" || role == "predicted";
 }
 
-/// "3.5 mm cubes, packing seeds 11, 12, 13".
+/// "11, 12, 13".
+std::string seeds_text(const std::vector<std::uint64_t>& seeds) {
+    std::string text;
+    for (std::uint64_t s : seeds) text += (text.empty() ? "" : ", ") + std::to_string(s);
+    return text;
+}
+
+/// "3.5 mm cubes, packing seeds 11, 12, 13", and "(direct tension on 11)" when the tension tests
+/// run on some of them only.
 std::string specimens_text(const SpecimenSetSpec& set) {
-    std::string seeds;
-    for (std::uint64_t s : set.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
-    return fmt(set.edge * 1e3, 3) + " mm cubes, packing seeds " + seeds;
+    std::string text = fmt(set.edge * 1e3, 3) + " mm cubes, packing seeds " + seeds_text(set.seeds);
+    if (!set.tension_seeds.empty() && set.tension_seeds.size() < set.seeds.size())
+        text += " (direct tension on " + seeds_text(set.tension_seeds) + ")";
+    return text;
 }
 
 std::string validation_specimens_text(const CalibrationProblem& p) { return specimens_text(p.validation); }
@@ -374,6 +383,8 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
         j["validation"] = {{"edge_mm", p.validation.edge * 1e3}, {"seeds", p.validation.seeds}, {"runs", v.runs},
                            {"from_ledger", v.from_ledger}, {"holds", validation_holds(target_rows(p, st))},
                            {"failed", v.evaluation.failed}, {"failure", v.evaluation.failure}, {"note", v.note}};
+        if (p.tension.fitted())  // the seeds whose direct-tension test ran
+            j["validation"]["tension_seeds"] = p.validation.tension_seeds.empty() ? p.validation.seeds : p.validation.tension_seeds;
     }
     return j;
 }

@@ -116,7 +116,7 @@ public:
 
     py::dict results(const cal::Evaluation& e) const {
         py::dict out;
-        std::size_t first = 0;  // the sand's first run: runs are by sand, then seed
+        std::size_t first = 0, first_tension = 0;  // the sand's first runs: runs are by sand, then seed
         for (std::size_t s = 0; s < problem_.sands.size(); ++s) {
             py::dict sand;
             const std::vector<std::uint64_t>& seeds = problem_.seeds_of(s);
@@ -124,7 +124,7 @@ public:
             std::vector<const cal::RunOutcome*> runs, tension;
             for (std::size_t k = 0; k < seeds.size(); ++k) {
                 runs.push_back(&e.runs.at(first + k));
-                if (!e.tension_runs.empty()) tension.push_back(&e.tension_runs.at(first + k));
+                if (!e.tension_runs.empty() && problem_.runs_tension_on(seeds[k])) tension.push_back(&e.tension_runs.at(first_tension++));
             }
             first += seeds.size();
             const auto values = [](const std::vector<const cal::RunOutcome*>& rs, cal::Quantity q) {

@@ -187,6 +187,11 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
             CHECK(free == documented);
             CHECK(space.index_of(cal::Role::stiffness_scale).has_value());
             CHECK(space.index_of(cal::Role::strength_scale).has_value());
+            if (std::string(name) == "joint.toml") {  // the main job: three 4 mm validation cubes, tension on the first
+                CHECK(p.validation.edge == Approx(4e-3));
+                CHECK(p.validation.seeds == std::vector<std::uint64_t>{4, 9, 10});
+                CHECK(p.validation.tension_seeds == std::vector<std::uint64_t>{4});
+            }
         }
     }
 }

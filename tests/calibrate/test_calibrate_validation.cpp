@@ -6,6 +6,7 @@
 #include <cmath>
 #include <regex>
 
+#include "calibrate/plan.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate/validation.hpp"
 #include "common/number_format.hpp"
@@ -146,6 +147,58 @@ TEST_CASE("a strain-at-peak miss on the validation specimens is explained by the
     CHECK(strain_misses.size() == 2);  // one per sand, on the validation specimens only
 }
 
+namespace {
+
+/// A problem of both sands with an assumed σc/σt target (reported, not fitted) and `validation`.
+fs::path problem_with_tension(const fs::path& dir, const cal::CubeModel& model, const std::string& validation) {
+    write_lab(dir, model);
+    return test::write_problem(dir, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
+                               "strain_weight = 1.0\ntension = \"assumed_ratio\"\ntension_ratio = 10.0\ntension_ratio_low = 8.0\n"
+                               "tension_ratio_high = 12.0\ntension_basis = \"test\"\ntension_weight = 0.0\n"
+                               "[solver]\nmethod = \"scaling\"\nmax_runs = 300\ntolerance = 0.002\n" + validation +
+                                   "\n[output]\ndir = \"out\"\n");
+}
+
+}  // namespace
+
+// The strain at peak of one cube scatters more than σt does, so a validation may run the
+// direct-tension test on some of its cubes only: [validation] tension_seeds. Every validation
+// seed runs its compression test, the tension seeds their tension test too; the plan counts
+// the same runs, and the summary names the seeds.
+TEST_CASE("validation tension seeds: the direct-tension tests run on those validation cubes alone", "[calibrate][validation]") {
+    TempDir all_dir("cal-validation-tension-all"), some_dir("cal-validation-tension-some");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem every =
+        cal::load_calibration_problem(problem_with_tension(all_dir.path, *plain, "[validation]\nseeds = [11, 12, 13]\n"));
+    const cal::CalibrationProblem some = cal::load_calibration_problem(
+        problem_with_tension(some_dir.path, *plain, "[validation]\nseeds = [11, 12, 13]\ntension_seeds = [12]\n"));
+    REQUIRE(some.validation.tension_seeds == std::vector<std::uint64_t>{12});
+    const cal::CalibrationResult r_every = cal::run_calibration(every, *cal::make_model(every));
+    const cal::CalibrationResult r_some = cal::run_calibration(some, *cal::make_model(some));
+    // 2 sands x 3 compression runs, and 2 x 3 or 2 x 1 tension runs.
+    const cal::Evaluation& v_every = r_every.stages.at(0).validation.evaluation;
+    const cal::Evaluation& v_some = r_some.stages.at(0).validation.evaluation;
+    CHECK(r_every.validation_runs == 12);
+    CHECK(r_some.validation_runs == 8);
+    CHECK(v_every.runs.size() == 6);
+    CHECK(v_every.tension_runs.size() == 6);
+    CHECK(v_some.runs.size() == 6);
+    CHECK(v_some.tension_runs.size() == 2);
+    CHECK(cal::expected_runs(some).validation == 8);
+    // The same fit, so the same point; σt of one cube (seed 12) against the mean of three.
+    REQUIRE(v_some.values == v_every.values);
+    for (std::size_t s = 0; s < kSands.size(); ++s) {
+        CHECK(v_some.sands.at(s).tension_ok == 1);
+        CHECK(v_some.sands.at(s).value(cal::Quantity::modulus) == v_every.sands.at(s).value(cal::Quantity::modulus));
+        CHECK(v_some.tension_runs.at(s).peak_pa == v_every.tension_runs.at(3 * s + 1).peak_pa);  // seed 12 is the second
+        CHECK(v_some.sands.at(s).value(cal::Quantity::tension) == v_every.tension_runs.at(3 * s + 1).peak_pa);
+    }
+    const nlohmann::json summary = report::summary_json(some, r_some);
+    CHECK(summary["stages"][0]["validation"]["tension_seeds"] == nlohmann::json::array({12}));
+    CHECK(report::summary_json(every, r_every)["stages"][0]["validation"]["tension_seeds"] == nlohmann::json::array({11, 12, 13}));
+    CHECK_THAT(report::summary_markdown(some, r_some), Catch::Contains("packing seeds 11, 12, 13 (direct tension on 12)"));
+}
+
 TEST_CASE("bad [validation] tables are refused naming the key, line and rule", "[calibrate][validation]") {
     TempDir dir("cal-validation-bad");
     auto model = cal::make_analytic_model(2, 0.001);
@@ -158,6 +211,12 @@ TEST_CASE("bad [validation] tables are refused naming the key, line and rule", "
     refused("[validation]\nedge_mm = 1.0\nseeds = [11]\n", "'validation.edge_mm' = 1.0 violates >= 3 x the largest grain (0.8 mm)");
     refused("[validation]\nedge_mm = 5.0\n", "'validation.seeds' is required");
     refused("[validation]\nseeds = [11]\nedges = 5.0\n", "unknown key 'validation.edges'");
+    // tension seeds: validation seeds, and only with a direct-tension target
+    refused("[validation]\nseeds = [11]\ntension_seeds = [11]\n", "'validation.tension_seeds' needs a direct-tension target");
+    INFO("tension seed not a validation seed");
+    CHECK_THROWS_WITH(cal::load_calibration_problem(
+                          problem_with_tension(dir.path, *model, "[validation]\nseeds = [11, 12]\ntension_seeds = [13]\n")),
+                      Catch::Contains("problem.toml:") && Catch::Contains("'validation.tension_seeds': seed 13 is not a validation seed"));
 }
 
 // A fitted strain-at-peak miss with every shape parameter fixed and the strain weight 0 (as in
