@@ -31,7 +31,7 @@ struct CalibrationStage {
     Evaluation prediction;                 ///< study mode: the best point run on `predicted`
     StageScaleUp scale_up;                 ///< the scales set on the scale-up specimens ([scale_up])
     StageValidation validation;            ///< the result on the validation specimens ([validation])
-    double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< max relative standard error of the seed mean, by quantity
+    double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< max relative standard error of the seed mean, by quantity (measure_noise)
     /// The outcome of sand s (fitted or predicted) at the calibrated parameters; nullptr if none.
     [[nodiscard]] const SandOutcome* outcome(std::size_t sand) const;
     /// The stage's result: the fit's best point, with its scales set on the scale-up specimens

@@ -3,15 +3,21 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/number_format.hpp"
+
 namespace gradem::cal {
 
 void measure_noise(const Evaluation& e, double out[kQuantityCount]) {
-    for (const SandOutcome& s : e.sands)
-        for (Quantity q : {Quantity::modulus, Quantity::peak, Quantity::strain, Quantity::tension}) {
-            const int k = static_cast<int>(q);
-            if (s.count(q) > 1 && std::isfinite(s.std[k]) && s.mean[k] != 0.0)
-                out[k] = std::max(out[k], std::fabs(s.std[k] / s.mean[k]) / std::sqrt(static_cast<double>(s.count(q))));
-        }
+    for (Quantity q : {Quantity::modulus, Quantity::peak, Quantity::strain, Quantity::tension}) {
+        const int k = static_cast<int>(q);
+        bool measured = false;  // a standard error needs two seeds of one sand
+        for (const SandOutcome& s : e.sands)
+            if (s.count(q) > 1 && std::isfinite(s.std[k]) && s.mean[k] != 0.0) {
+                out[k] = std::max(measured ? out[k] : 0.0, std::fabs(s.std[k] / s.mean[k]) / std::sqrt(static_cast<double>(s.count(q))));
+                measured = true;
+            }
+        if (!measured) out[k] = std::nan("");
+    }
 }
 
 StageScaleUp scale_up_point(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor, Ledger& ledger,
@@ -39,7 +45,8 @@ StageScaleUp scale_up_point(const CalibrationProblem& problem, const ValidatedMo
     }
     if (log) {
         std::ostringstream line;
-        line << "scale-up on " << on_set.seeds.size() << " seeds, edge " << on_set.base.specimen.genesis.edge * 1e3 << " mm: "
+        line << "scale-up on " << on_set.seeds.size() << (on_set.seeds.size() == 1 ? " seed" : " seeds") << ", edge "
+             << common::format_significant(on_set.base.specimen.genesis.edge * 1e3, 4) << " mm: "
              << up.runs << " runs (" << up.from_ledger << " from the ledger)";
         if (up.point.empty()) line << "; " << up.note;
         else line << "; moduli x " << up.scales.alpha << ", strengths x " << up.scales.beta;

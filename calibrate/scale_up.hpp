@@ -26,7 +26,7 @@ struct StageScaleUp {
     Scales scales;              ///< α (moduli), β (strengths) applied
     std::vector<double> point;  ///< the rescaled parameters: the stage's result (empty: not done)
     int runs = 0, from_ledger = 0;
-    double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< of `measured`: max relative SE of the seed mean
+    double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< of `measured`: max relative SE of the seed mean (measure_noise)
     std::string note;           ///< why it was not done, if it was not
 };
 
@@ -35,7 +35,8 @@ StageScaleUp scale_up_point(const CalibrationProblem& problem, const ValidatedMo
                             const std::vector<double>& point, const std::vector<std::size_t>& sands,
                             const std::function<void(const std::string&)>& log);
 
-/// Max relative standard error of the seed mean over the evaluated sands, by quantity.
+/// Max relative standard error of the seed mean over the evaluated sands, by quantity; NaN where
+/// no sand has two seeds that ran it (one cube has no standard error, not a zero one).
 void measure_noise(const Evaluation& e, double out[kQuantityCount]);
 
 }  // namespace gradem::cal

@@ -324,7 +324,7 @@ std::vector<std::string> unmet_statements(const CalibrationProblem& p, const Cal
 
 json noise_floor_json(const CalibrationProblem& p, const double (&floor)[kQuantityCount]) {
     json j = json::object();
-    for (Quantity q : p.fitted_quantities()) j[to_string(q)] = floor[static_cast<int>(q)];
+    for (Quantity q : p.fitted_quantities()) j[to_string(q)] = number(floor[static_cast<int>(q)]);  // null: not measured
     return j;
 }
 
@@ -588,9 +588,12 @@ void shape_index_markdown(std::ostringstream& md, const CalibrationProblem& p, c
            << pct(row.sim / row.lab - 1.0) << " |\n";
 }
 
+/// A noise floor as a percentage, or why there is none (measure_noise: one seed per sand).
+std::string noise_text(double floor) { return std::isfinite(floor) ? pct(floor).substr(1) : "not measured (one seed)"; }
+
 void noise_floor_line(std::ostringstream& md, const CalibrationProblem& p, const double (&floor)[kQuantityCount]) {
-    md << "modulus " << pct(floor[0]).substr(1) << ", peak " << pct(floor[1]).substr(1) << ", strain " << pct(floor[2]).substr(1);
-    if (p.tension.fitted()) md << ", tension " << pct(floor[static_cast<int>(Quantity::tension)]).substr(1);
+    md << "modulus " << noise_text(floor[0]) << ", peak " << noise_text(floor[1]) << ", strain " << noise_text(floor[2]);
+    if (p.tension.fitted()) md << ", tension " << noise_text(floor[static_cast<int>(Quantity::tension)]);
 }
 
 void noise_floor_markdown(std::ostringstream& md, const CalibrationProblem& p, const CalibrationStage& st) {

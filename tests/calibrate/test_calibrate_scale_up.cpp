@@ -4,11 +4,13 @@
 // size effect of known factors (moduli × 1.12, strengths × 1.08 on the larger cubes) is undone
 // exactly, so the result recovers the parameters the lab targets were made with.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include <toml++/toml.h>
 
 #include "calibrate/problem.hpp"
+#include "calibrate/scale_up.hpp"
 #include "calibrate/study/study.hpp"
 #include "calibrate/validation.hpp"
 #include "calibrate_fixture.hpp"
@@ -96,6 +98,10 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     CHECK(summary["stages"][0]["validation"]["holds"] == true);
     CHECK(summary["stages"][0]["scale_up"]["done"] == true);
     CHECK(summary["runs"]["scale_up"] == 4);
+    // The milestone gives the seeds and the edge as a person writes them ("5 mm", not "5.000000").
+    const auto milestone = std::find_if(r.log.begin(), r.log.end(), [](const std::string& line) { return line.rfind("scale-up on", 0) == 0; });
+    REQUIRE(milestone != r.log.end());
+    CHECK_THAT(*milestone, Catch::StartsWith("scale-up on 2 seeds, edge 5 mm: 4 runs (0 from the ledger); moduli x "));
     CHECK(summary["stages"][0]["parameters"][0]["value"].get<double>() == st.result()[0]);
     CHECK(summary["stages"][0]["parameters"][0]["fit_value"].get<double>() == st.solution.best[0]);
     const std::string md = report::summary_markdown(with, r);
@@ -115,6 +121,38 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     const cal::CalibrationResult again = cal::run_calibration(with, model);
     CHECK(again.stages.at(0).scale_up.from_ledger == 4);
     CHECK(again.runs_executed == 0);
+}
+
+// A standard error needs two seeds: scales set on one cube per sand carry that cube's scatter,
+// and their noise floor is "not measured", not 0 %.
+TEST_CASE("the noise floor of one seed per sand is not measured, not zero", "[calibrate][scale_up]") {
+    cal::SandOutcome one;
+    one.ok = one.tension_ok = 1;
+    for (int k = 0; k < cal::kQuantityCount; ++k) one.mean[k] = 1.0, one.std[k] = std::nan("");
+    cal::SandOutcome two = one;
+    two.ok = two.tension_ok = 2;
+    for (int k = 0; k < cal::kQuantityCount; ++k) two.std[k] = 0.1 * (k + 1);
+    cal::Evaluation single, mixed;
+    single.sands = {one, one};
+    mixed.sands = {one, two};
+    double floor_single[cal::kQuantityCount] = {0, 0, 0, 0}, floor_mixed[cal::kQuantityCount] = {0, 0, 0, 0};
+    cal::measure_noise(single, floor_single);
+    cal::measure_noise(mixed, floor_mixed);
+    for (int k = 0; k < cal::kQuantityCount; ++k) {
+        CHECK(std::isnan(floor_single[k]));
+        CHECK(floor_mixed[k] == Approx(0.1 * (k + 1) / std::sqrt(2.0)));  // the sand that has two seeds
+    }
+
+    TempDir dir("cal-scale-up-one-seed");
+    const cal::CalibrationProblem p =
+        cal::load_calibration_problem(problem_with(dir.path, "[scale_up]\nedge_mm = 5.0\nseeds = [21]\n"));
+    cal::ValidatedModel model = sized_model(p);
+    const cal::CalibrationResult r = cal::run_calibration(p, model);
+    REQUIRE(r.stages.at(0).scale_up.runs == 2);
+    CHECK_THAT(report::summary_markdown(p, r),
+               Catch::Contains("modulus not measured (one seed), peak not measured (one seed), strain not measured (one seed) on the "
+                               "scale-up specimens"));
+    CHECK(report::summary_json(p, r)["stages"][0]["scale_up"]["noise_floor_rel_se"]["modulus"].is_null());
 }
 
 TEST_CASE("bad [scale_up] tables are refused naming the key, line and rule", "[calibrate][scale_up]") {
