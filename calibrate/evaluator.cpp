@@ -76,7 +76,8 @@ int Evaluator::runs_needed(const std::vector<std::vector<double>>& points, const
         for (std::size_t s : sands)
             for (std::uint64_t seed : problem_.seeds_of(s))
                 for (CubeTest t : tests())
-                    if (const std::string key = run_key(m, s, seed, t); runs_test(t, seed) && !used_.count(key)) fresh.insert(key);
+                    if (runs_test(t, seed))
+                        if (const std::string key = run_key(m, s, seed, t); !used_.count(key)) fresh.insert(key);
     }
     return static_cast<int>(fresh.size());
 }

@@ -148,13 +148,16 @@ RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSpecimens&
     const int sands = static_cast<int>(problem.sands.size());
     const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
     // the companions of every compression run, or the result's alone (problem.hpp), or those of
-    // the validation's tension seeds alone
-    const std::vector<std::uint64_t>& tension_seeds = problem.validation.tension_seeds;
+    // the validation's tension seeds
     int tension = 0;
-    if (!problem.tension.fitted()) tension = 0;
-    else if (set.name == "fit" && problem.tension_at_result_only()) tension = static_cast<int>(set.seeds.of(s).size());
-    else if (set.name == "validation" && !tension_seeds.empty()) tension = std::min(per_set, static_cast<int>(tension_seeds.size()));
-    else tension = per_set / 2;
+    if (!problem.tension.fitted()) {
+    } else if (set.name == "fit" && problem.tension_at_result_only()) {
+        tension = static_cast<int>(set.seeds.of(s).size());
+    } else if (set.name == "validation") {
+        tension = std::min(per_set, static_cast<int>(problem.validation.seeds_with_tension().size()));
+    } else {
+        tension = per_set / 2;
+    }
     return plan_runs(problem, set, s, start, {per_set - tension, tension}, probe_seconds, specimens);
 }
 

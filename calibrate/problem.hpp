@@ -139,6 +139,8 @@ struct SpecimenSetSpec {
     /// cubes test it than the strain at peak needs.
     std::vector<std::uint64_t> tension_seeds;
     [[nodiscard]] bool enabled() const { return !seeds.empty(); }
+    /// The seeds whose direct-tension test runs (when tension is a target): tension_seeds, or every seed.
+    [[nodiscard]] const std::vector<std::uint64_t>& seeds_with_tension() const { return tension_seeds.empty() ? seeds : tension_seeds; }
 };
 using ValidationSpec = SpecimenSetSpec;
 

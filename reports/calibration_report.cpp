@@ -128,8 +128,7 @@ std::string seeds_text(const std::vector<std::uint64_t>& seeds) {
 /// run on some of them only.
 std::string specimens_text(const SpecimenSetSpec& set) {
     std::string text = fmt(set.edge * 1e3, 3) + " mm cubes, packing seeds " + seeds_text(set.seeds);
-    if (!set.tension_seeds.empty() && set.tension_seeds.size() < set.seeds.size())
-        text += " (direct tension on " + seeds_text(set.tension_seeds) + ")";
+    if (set.seeds_with_tension().size() < set.seeds.size()) text += " (direct tension on " + seeds_text(set.seeds_with_tension()) + ")";
     return text;
 }
 
@@ -384,7 +383,7 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
                            {"from_ledger", v.from_ledger}, {"holds", validation_holds(target_rows(p, st))},
                            {"failed", v.evaluation.failed}, {"failure", v.evaluation.failure}, {"note", v.note}};
         if (p.tension.fitted())  // the seeds whose direct-tension test ran
-            j["validation"]["tension_seeds"] = p.validation.tension_seeds.empty() ? p.validation.seeds : p.validation.tension_seeds;
+            j["validation"]["tension_seeds"] = p.validation.seeds_with_tension();
     }
     return j;
 }
