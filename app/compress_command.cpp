@@ -60,7 +60,8 @@ exp::CubeTestResult run_with_progress(const exp::Packing& packing, const exp::Cu
     return r;
 }
 
-void print_summary(const exp::CubeTestResult& r, const std::optional<report::RateCheck>& check, const std::string& out) {
+void print_summary(const exp::CubeTestResult& r, const std::optional<report::RateCheck>& check, double imbalance_limit,
+                   const std::string& out) {
     std::FILE* text = console().text();
     std::int64_t tension = 0, shear = 0;
     for (const BreakEvent& e : r.cracks) ++(e.mode == BondState::broken_shear ? shear : tension);
@@ -78,6 +79,9 @@ void print_summary(const exp::CubeTestResult& r, const std::optional<report::Rat
     if (check)
         std::fprintf(text, "  rate check (half rate %.4g 1/s): peak %+.2f %%, chord modulus %+.2f %%%s\n", check->half_rate,
                     100.0 * check->peak_change, 100.0 * check->modulus_change, check->diverged_half ? " (half-rate run diverged)" : "");
+    if (check)
+        if (const std::string verdict = report::imbalance_verdict(*check, imbalance_limit); !verdict.empty())
+            std::fprintf(text, "  rate check: %s\n", verdict.c_str());
     for (const std::string& w : r.warnings) std::fprintf(text, "  warning: %s\n", w.c_str());
     std::fprintf(text, "  results in           %s\n", out.c_str());
 }
@@ -117,7 +121,7 @@ int CompressCommand::run() {
     }
     report::write_cube_outputs(config.out_dir, result, config, packing, spec.loading.strain_rate, check,
                             paste ? &*paste : nullptr);
-    print_summary(result, check, config.out_dir.string());
+    print_summary(result, check, spec.imbalance_warning, config.out_dir.string());
     if (paste) print_paste_summary(*paste, result);
     report::write_html_report_or_warn(report::ReportKind::compress, config.out_dir, con.announce(), con.notes_stream());
     if (con.json()) Console::print_json(common::read_file_bytes(config.out_dir / "macro.json"));

@@ -79,7 +79,7 @@ std::optional<report::CompressionReference> compression_beside(const exp::CubeCo
     }
 }
 
-void print_summary(const exp::TensionTestResult& t, const std::optional<report::RateCheck>& check,
+void print_summary(const exp::TensionTestResult& t, const std::optional<report::RateCheck>& check, double imbalance_limit,
                    const std::optional<report::CompressionReference>& compression, const std::string& out) {
     std::FILE* text = console().text();
     const exp::CubeTestResult& r = t.cube;
@@ -103,6 +103,9 @@ void print_summary(const exp::TensionTestResult& t, const std::optional<report::
         std::fprintf(text, "  rate check (half rate %.4g 1/s): peak %+.2f %%, modulus %+.2f %%%s\n", check->half_rate,
                     100.0 * check->peak_change, 100.0 * check->modulus_change,
                     check->diverged_half ? " (half-rate run diverged)" : "");
+    if (check)
+        if (const std::string verdict = report::imbalance_verdict(*check, imbalance_limit); !verdict.empty())
+            std::fprintf(text, "  rate check: %s\n", verdict.c_str());
     for (const std::string& w : r.warnings) std::fprintf(text, "  warning: %s\n", w.c_str());
     std::fprintf(text, "  results in           %s\n", out.c_str());
 }
@@ -139,7 +142,7 @@ int TensionCommand::run() {
     }
     if (!compression) compression = compression_beside(config, packing);
     report::write_tension_outputs(out_dir, result, config, spec, packing, spec.test.loading.strain_rate, check, compression);
-    print_summary(result, check, compression, out_dir.string());
+    print_summary(result, check, spec.test.imbalance_warning, compression, out_dir.string());
     if (con.json()) Console::print_json(common::read_file_bytes(out_dir / "macro.json"));
     if (result.diverged() || half_diverged) {
         std::fprintf(stderr, "gradem tension: the simulation diverged: %s\n",

@@ -117,6 +117,9 @@ json rate_check_json(const RateCheck& r) {
             {"chord_modulus_half_rate_mpa", num(r.chord_modulus_half * kMpa)},
             {"peak_change", num(r.peak_change)},
             {"modulus_change", num(r.modulus_change)},
+            {"platen_imbalance", num(r.imbalance)},
+            {"platen_imbalance_half_rate", num(r.imbalance_half)},
+            {"imbalance_falls_with_rate", r.imbalance_falls()},
             {"stop_reason_half_rate", r.stop_reason_half},
             {"diverged_half_rate", r.diverged_half}};
 }
@@ -133,9 +136,24 @@ RateCheck compare_rates(const CubeTestResult& base, const CubeTestResult& half, 
     r.chord_modulus_half = half.macro.chord_modulus_pa;
     r.peak_change = relative_change(r.peak_stress, r.peak_stress_half);
     r.modulus_change = relative_change(r.chord_modulus, r.chord_modulus_half);
+    r.imbalance = base.platen_imbalance;
+    r.imbalance_half = half.platen_imbalance;
     r.stop_reason_half = half.test.stop_reason;
     r.diverged_half = half.diverged();
     return r;
+}
+
+bool RateCheck::imbalance_falls() const { return imbalance_half <= kInertialImbalanceShare * imbalance; }
+
+std::string imbalance_verdict(const RateCheck& check, double limit) {
+    if (!(check.imbalance > limit)) return {};
+    std::ostringstream out;
+    out.precision(2);
+    out << std::fixed << "the ends' stresses differ by " << 100.0 * check.imbalance << " % at the rate, "
+        << 100.0 * check.imbalance_half << " % at half of it: ";
+    if (check.imbalance_falls()) out << "inertia (it falls with the rate); lower the strain rate";
+    else out << "not inertia, which would halve with the rate, but cracks ahead of the peak; the rate is quasi-static as far as this shows";
+    return out.str();
 }
 
 std::string load_curve_csv(const CubeTestResult& r) {

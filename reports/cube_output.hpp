@@ -31,9 +31,20 @@ struct RateCheck {
     double chord_modulus = 0.0, chord_modulus_half = 0.0; ///< [Pa] (NaN if not reduced)
     double peak_change = 0.0;     ///< (half - configured) / configured [-]
     double modulus_change = 0.0;  ///< [-]
+    double imbalance = 0.0, imbalance_half = 0.0;  ///< the runs' platen imbalance (CubeTestResult) [-]
     std::string stop_reason_half;
     bool diverged_half = false;
+    /// Whether halving the rate cut the platen imbalance to at most kInertialImbalanceShare of
+    /// it: a difference of the end stresses that comes from the specimen's inertia scales with
+    /// the loading rate (half at half the rate); one that comes from cracks ahead of the peak
+    /// (a tension cube's microcracking from about 70 % of its peak) does not move.
+    [[nodiscard]] bool imbalance_falls() const;
 };
+inline constexpr double kInertialImbalanceShare = 0.75;
+
+/// With the configured run's imbalance over `limit` (CubeTestSpec::imbalance_warning): what
+/// the rate check says of it, for the summary; empty otherwise.
+std::string imbalance_verdict(const RateCheck& check, double limit);
 
 /// Compares a run at the configured rate with one at half of it.
 RateCheck compare_rates(const exp::CubeTestResult& at_rate, const exp::CubeTestResult& at_half_rate, double strain_rate);

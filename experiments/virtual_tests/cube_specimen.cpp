@@ -80,7 +80,9 @@ std::int64_t settle(World& world, const CubeTestSpec& spec, double& ratio) {
 // peak to the first point at 95 % of it. Past that point the cracks that make the peak run
 // through the specimen and their stress waves set the two ends apart at any loading rate (a
 // flat-joint tension cube: 3.0, 3.3 and 3.2 % up to its peak at 1, 1.5 and 2 × the automatic
-// rate, 1.6, 1.5 and 1.4 % up to 95 %), which lowering the rate, the warning's advice, does not cure.
+// rate, 1.6, 1.5 and 1.4 % up to 95 %), which lowering the rate does not cure. Below it, cracks
+// can still do it (a tension cube microcracks from about 70 % of its peak), so the warning names
+// both causes, and `--check-rate` tells them apart (report::imbalance_verdict).
 double platen_imbalance(const PlatenTestResult& t) {
     double worst = 0.0;
     for (const CurvePoint& p : t.curve) {
@@ -141,8 +143,10 @@ void reduce_cube_result(CubeTestResult& r, const CubeTestSpec& spec, const lab::
     r.platen_imbalance = platen_imbalance(r.test);
     if (r.platen_imbalance > spec.imbalance_warning) {
         std::ostringstream w;
-        w << "dynamic test: top and bottom platen stresses differ by up to " << 100.0 * r.platen_imbalance
-          << " % before the peak (limit " << 100.0 * spec.imbalance_warning << " %); lower the strain rate";
+        w.precision(3);
+        w << "unequal end stresses: top and bottom differ by up to " << 100.0 * r.platen_imbalance
+          << " % before the peak (limit " << 100.0 * spec.imbalance_warning
+          << " %): a test too fast to be quasi-static, or cracks ahead of the peak; --check-rate tells which";
         r.warnings.push_back(w.str());
     }
 }

@@ -19,6 +19,7 @@
 #include "common/input_error.hpp"
 #include "experiments/config/cube_config.hpp"
 #include "experiments/config/material_table.hpp"
+#include "experiments/virtual_tests/cube_specimen.hpp"
 #include "reports/cube_output.hpp"
 
 using namespace gradem;
@@ -244,6 +245,65 @@ TEST_CASE("result writers: curve and crack CSVs, macro.json with null for NaN", 
     CHECK(j.contains("chord_modulus_mpa"));
     CHECK(j.contains("strain_at_peak"));
     CHECK(j["material"]["display"].contains("tensile_strength_mpa"));
+}
+
+namespace {
+
+/// A cube test whose two ends differ by `gap` (relative) over its whole rise to a 20 MPa peak
+/// at platen strain 1e-3, reduced as a run's result is (platen_imbalance, warnings).
+CubeTestResult uneven_ends(double gap) {
+    CubeTestResult r;
+    for (int k = 1; k <= 130; ++k) {
+        CurvePoint p;
+        p.platen_strain = p.gauge_strain = 1e-5 * k;
+        p.stress = k <= 100 ? 20e6 * k / 100.0 : 20e6 * (1.0 - 0.01 * (k - 100));
+        p.stress_top = p.stress * (1.0 + 0.5 * gap);
+        p.stress_bottom = p.stress * (1.0 - 0.5 * gap);
+        p.lateral_strain = 0.2 * p.gauge_strain;
+        p.time = 1e-3 * k;
+        r.test.curve.push_back(p);
+    }
+    r.test.peak_stress = 20e6;
+    r.test.strain_at_peak = 1e-3;
+    reduce_cube_result(r, CubeTestSpec{});  // imbalance_warning 0.02
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("rate check: an end-stress imbalance that halves with the rate is inertia, one that stays is not",
+          "[cube_output]") {
+    const double limit = CubeTestSpec{}.imbalance_warning;
+    const CubeTestResult at_rate = uneven_ends(0.03);
+    REQUIRE(at_rate.platen_imbalance == Approx(0.03).epsilon(1e-9));
+    REQUIRE(at_rate.warnings.size() == 1);
+    CHECK_THAT(at_rate.warnings[0], Contains("unequal end stresses") && Contains("3 %") && Contains("--check-rate"));
+    SECTION("inertia: 3 % at the rate, 1.5 % at half of it") {
+        const RateCheck check = compare_rates(at_rate, uneven_ends(0.015), 1.0);
+        CHECK(check.imbalance == Approx(0.03).epsilon(1e-9));
+        CHECK(check.imbalance_half == Approx(0.015).epsilon(1e-9));
+        CHECK(check.imbalance_falls());
+        CHECK_THAT(imbalance_verdict(check, limit), Contains("3.00 %") && Contains("1.50 %") && Contains("inertia (it falls") &&
+                                                         Contains("lower the strain rate"));
+        const auto j = nlohmann::json::parse(macro_json(at_rate, CubeConfig{}, Packing{}, 1.0, check));
+        CHECK(j["rate_check"]["platen_imbalance"].get<double>() == Approx(0.03));
+        CHECK(j["rate_check"]["platen_imbalance_half_rate"].get<double>() == Approx(0.015));
+        CHECK(j["rate_check"]["imbalance_falls_with_rate"] == true);
+    }
+    SECTION("cracks: 3 % at the rate, 2.8 % at half of it") {
+        const RateCheck check = compare_rates(at_rate, uneven_ends(0.028), 1.0);
+        CHECK_FALSE(check.imbalance_falls());
+        const std::string verdict = imbalance_verdict(check, limit);
+        CHECK_THAT(verdict, Contains("2.80 %") && Contains("not inertia") && Contains("cracks ahead of the peak"));
+        CHECK_THAT(verdict, !Contains("lower the strain rate"));
+        const auto j = nlohmann::json::parse(macro_json(at_rate, CubeConfig{}, Packing{}, 1.0, check));
+        CHECK(j["rate_check"]["imbalance_falls_with_rate"] == false);
+    }
+    SECTION("under the limit at the rate: nothing to say") {
+        const CubeTestResult even = uneven_ends(0.01);
+        CHECK(even.warnings.empty());
+        CHECK(imbalance_verdict(compare_rates(even, uneven_ends(0.01), 1.0), limit).empty());
+    }
 }
 
 TEST_CASE("bond model keys: each model reads its own parameters, in SI, and macro.json shows them", "[cube_config]") {
