@@ -207,6 +207,11 @@ def macro_rows(macro):
     rc = macro.get("rate_check")
     if rc:
         rows.append(["rate check (half rate)", f"peak {pct(rc.get('peak_change'), 2)}, chord modulus {pct(rc.get('modulus_change'), 2)}"])
+        at_rate, at_half = finite(rc.get("platen_imbalance")), finite(rc.get("platen_imbalance_half_rate"))
+        if at_rate == at_rate and at_half == at_half:  # an imbalance from inertia halves with the rate
+            ratio = f" (× {at_half / at_rate:.2f}; inertia alone would give × 0.5)" if at_rate > 0 else ""
+            rows.append(["platen imbalance at the rate, at half of it",
+                         f"{pct(at_rate, 2, signed=False)}, {pct(at_half, 2, signed=False)}{ratio}"])
     return rows
 
 
