@@ -16,7 +16,7 @@ namespace {
 SolveResult solve_then_tension(const CalibrationProblem& problem, SolveContext& ctx, Evaluator& evaluator,
                                const std::vector<double>& start) {
     if (!problem.tension_at_result_only()) return solve(ctx, start);
-    const int tension_runs = problem.runs_per_test(ctx.sands);
+    const int tension_runs = problem.tension_runs_per_test(ctx.sands);
     const int reserved = evaluator.reserve();
     evaluator.set_tension_companion(false);
     evaluator.set_reserve(reserved + tension_runs);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -146,15 +147,24 @@ int fitted_runs_of(const CalibrationProblem& problem, const ExpectedRuns& e, std
 RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSpecimens& set, std::size_t s, const ExpectedRuns& e,
                       const exp::MaterialParams& start, double probe_seconds, std::vector<SpecimenPlan>& specimens) {
     const int sands = static_cast<int>(problem.sands.size());
-    const int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
+    int per_set = set.name == "fit" ? fitted_runs_of(problem, e, s) : set.name == "scale-up" ? e.scale_up / sands : e.validation / sands;
     // the companions of every compression run, or the result's alone (problem.hpp), or those of
     // the validation's tension seeds
     int tension = 0;
     if (!problem.tension.fitted()) {
     } else if (set.name == "fit" && problem.tension_at_result_only()) {
-        tension = static_cast<int>(set.seeds.of(s).size());
+        // the path's runs but the result's tension tests are compression runs, spread by seeds
+        std::vector<std::size_t> all(problem.sands.size());
+        std::iota(all.begin(), all.end(), std::size_t{0});
+        ExpectedRuns compression = e;
+        compression.fitted = std::max(0, e.fitted - problem.tension_runs_per_test(all));
+        tension = static_cast<int>(problem.tension_seeds_of(s).size());
+        per_set = fitted_runs_of(problem, compression, s) + tension;
     } else if (set.name == "validation") {
         tension = std::min(per_set, static_cast<int>(problem.validation.seeds_with_tension().size()));
+    } else if (set.name == "fit") {  // every evaluation: a compression run per seed, a tension run per tension seed
+        const auto seeds = static_cast<int>(problem.seeds_of(s).size()), with = static_cast<int>(problem.tension_seeds_of(s).size());
+        tension = per_set * with / std::max(1, seeds + with);
     } else {
         tension = per_set / 2;
     }

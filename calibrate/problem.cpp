@@ -132,6 +132,7 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     s.text("calibrate_on", p.calibrate_on);
     p.seeds = read_seeds(s, "seeds", p.seeds);
     const toml::node* sand_seeds = s.node("sand_seeds");
+    p.tension_seeds = read_seeds(s, "tension_seeds", {});
     std::string bond_model;
     s.text("bond_model", bond_model);
     double edge = 0.0;  // [m] 0: the base config's genesis.edge_mm
@@ -418,6 +419,23 @@ void read_validation(Context& ctx, const toml::table& root, CalibrationProblem& 
                                                  "without one no tension test runs");
 }
 
+/// [calibration] tension_seeds, once the sands' seeds and the tension target are read: each a
+/// packing seed of every sand (so every sand has its σt), and only with a tension target.
+void check_tension_seeds(Context& ctx, const CalibrationProblem& p) {
+    if (p.tension_seeds.empty()) return;
+    const int line = ctx.keys["calibration.tension_seeds"].line;
+    for (std::uint64_t seed : p.tension_seeds)
+        for (std::size_t sand = 0; sand < p.sands.size(); ++sand)
+            if (!contains(p.seeds_of(sand), seed))
+                throw InputError(ctx.file, line, "key 'calibration.tension_seeds': seed " + std::to_string(seed) + " is not a seed of " +
+                                                     p.sands[sand] + " (calibration." +
+                                                     (&p.seeds_of(sand) == &p.seeds ? std::string("seeds") : "sand_seeds") +
+                                                     "): the tension test runs on a fitted cube of every sand, beside its compression test");
+    if (!p.tension.fitted())
+        throw InputError(ctx.file, line, "key 'calibration.tension_seeds' needs a direct-tension target ([targets] tension): "
+                                         "without one no tension test runs");
+}
+
 void read_solver(Context& ctx, const toml::table& root, CalibrationProblem& p) {
     Section s(ctx, root, "solver");
     SolverSettings& v = p.solver;
@@ -550,6 +568,19 @@ bool CalibrationProblem::runs_tension_on(std::uint64_t seed) const {
     return tension_seeds.empty() || contains(tension_seeds, seed);
 }
 
+std::vector<std::uint64_t> CalibrationProblem::tension_seeds_of(std::size_t sand) const {
+    std::vector<std::uint64_t> out;
+    for (std::uint64_t seed : seeds_of(sand))
+        if (runs_tension_on(seed)) out.push_back(seed);
+    return out;
+}
+
+int CalibrationProblem::tension_runs_per_test(const std::vector<std::size_t>& of_sands) const {
+    std::size_t n = 0;
+    for (std::size_t sand : of_sands) n += tension_seeds_of(sand).size();
+    return static_cast<int>(n);
+}
+
 int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) const {
     std::size_t n = 0;
     for (std::size_t sand : of_sands) n += seeds_of(sand).size();
@@ -585,6 +616,11 @@ std::string CalibrationProblem::describe() const {
     if (tension.fitted())  // only then: the other problems keep their fingerprints
         d << "tension " << to_string(tension.source) << " weight " << exact(weights.tension) << " ratio " << exact(tension.ratio)
           << "\n";
+    if (!tension_seeds.empty()) {  // only when given, as above
+        d << "tension seeds =";
+        for (auto s : tension_seeds) d << " " << s;
+        d << "\n";
+    }
     d << "solver = " << to_string(solver.method) << " tolerance " << exact(solver.tolerance) << " fd_step "
       << exact(solver.fd_step) << " homogeneity " << exact(solver.homogeneity_tolerance) << " penalty "
       << exact(solver.penalty) << " seed " << solver.seed << "\ntimeout_s = " << exact(timeout_s) << "\n";
@@ -600,6 +636,7 @@ CalibrationProblem load_calibration_problem(const fs::path& toml_file) {
     read_calibration(ctx, root, p);
     read_parameters(ctx, root, p);
     read_targets(ctx, root, p);
+    check_tension_seeds(ctx, p);
     read_solver(ctx, root, p);
     read_scale_up(ctx, root, p);
     read_validation(ctx, root, p);

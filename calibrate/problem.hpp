@@ -155,7 +155,8 @@ struct CalibrationProblem {
     std::vector<std::uint64_t> seeds = {1, 2};   ///< packing seeds of every sand without its own
     std::vector<std::vector<std::uint64_t>> sand_seeds;  ///< a sand's own seeds (index = sand; empty: `seeds`)
     /// The seeds whose compression runs have their tension companion when tension is a target
-    /// (empty: every seed; a validation's tension_seeds: validation_problem()).
+    /// (empty: every seed; [calibration] tension_seeds, each a seed of every sand; a
+    /// validation's tension_seeds: validation_problem()).
     std::vector<std::uint64_t> tension_seeds;
     std::vector<ParameterSpec> parameters;
     std::filesystem::path lab_results;
@@ -181,6 +182,10 @@ struct CalibrationProblem {
 
     /// Whether the compression run of packing seed `seed` has its tension companion (tension_seeds).
     [[nodiscard]] bool runs_tension_on(std::uint64_t seed) const;
+    /// The seeds of sand `sand` whose tension test runs (runs_tension_on).
+    [[nodiscard]] std::vector<std::uint64_t> tension_seeds_of(std::size_t sand) const;
+    /// The tension runs at one point: tension_seeds_of summed over `of_sands`.
+    [[nodiscard]] int tension_runs_per_test(const std::vector<std::size_t>& of_sands) const;
 
     /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
     [[nodiscard]] std::vector<Quantity> fitted_quantities() const;

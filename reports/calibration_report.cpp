@@ -470,8 +470,11 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             all_d.push_back(d);
         }
     }
-    json seeds = p.seeds, seeds_by_sand = json::object();
-    for (std::size_t s = 0; s < p.sands.size(); ++s) seeds_by_sand[p.sands[s]] = p.seeds_of(s);
+    json seeds = p.seeds, seeds_by_sand = json::object(), tension_seeds_by_sand = json::object();
+    for (std::size_t s = 0; s < p.sands.size(); ++s) {
+        seeds_by_sand[p.sands[s]] = p.seeds_of(s);
+        if (p.tension.fitted()) tension_seeds_by_sand[p.sands[s]] = p.tension_seeds_of(s);  // the fit's tension tests
+    }
     return {{"schema", "gradem-calibration/1"},
             {"config", p.file.string()},
             {"model", to_string(p.model)},
@@ -482,6 +485,7 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"sands", p.sands},
             {"packing_seeds", seeds},
             {"packing_seeds_by_sand", seeds_by_sand},
+            {"tension_seeds_by_sand", tension_seeds_by_sand},
             {"specimen_edge_mm", p.base.specimen.genesis.edge * 1e3},
             {"lab_results", p.lab_results.string()},
             {"representative_lab_data", p.representative},
@@ -526,8 +530,10 @@ void header_markdown(std::ostringstream& md, const CalibrationProblem& p, const 
     md << "; packing seeds per sand: ";
     for (std::size_t s = 0; s < p.sands.size(); ++s)
         if (s == 0 || p.seeds_of(s) != p.seeds_of(0)) md << (s ? ", " + p.sands[s] + " " : "") << p.seeds_of(s).size();
-    md << " (the same packings for every parameter set); specimen edge "
-       << fmt(p.base.specimen.genesis.edge * 1e3) << " mm\n"
+    md << " (the same packings for every parameter set)";
+    if (p.tension.fitted() && !p.tension_seeds.empty()) md << "; direct tension on seed" << (p.tension_seeds.size() > 1 ? "s " : " ")
+                                                            << seeds_text(p.tension_seeds) << " of each sand";
+    md << "; specimen edge " << fmt(p.base.specimen.genesis.edge * 1e3) << " mm\n"
        << "- DEM test runs: **" << r.runs_used << "** of a budget of " << p.solver.max_runs << " (" << r.runs_executed
        << " run now, " << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed); " << r.history.size()
        << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n";

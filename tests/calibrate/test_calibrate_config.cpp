@@ -187,10 +187,12 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
             CHECK(free == documented);
             CHECK(space.index_of(cal::Role::stiffness_scale).has_value());
             CHECK(space.index_of(cal::Role::strength_scale).has_value());
-            if (std::string(name) == "joint.toml") {  // the main job: three 4 mm validation cubes, tension on the first
-                CHECK(p.validation.edge == Approx(4e-3));
+            if (std::string(name) == "joint.toml") {  // the main job: three 4 mm validation cubes, tension on the first;
+                CHECK(p.validation.edge == Approx(4e-3));  // the fitted cubes' tension on seed 1 of each sand
                 CHECK(p.validation.seeds == std::vector<std::uint64_t>{4, 9, 10});
                 CHECK(p.validation.tension_seeds == std::vector<std::uint64_t>{4});
+                CHECK(p.tension_seeds == std::vector<std::uint64_t>{1});
+                CHECK(p.tension_runs_per_test({0, 1}) == 2);
             }
         }
     }

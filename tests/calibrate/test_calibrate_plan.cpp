@@ -207,6 +207,40 @@ TEST_CASE("plan: a flat joint's runs are priced with its law's PlatenTestCost", 
                                          .epsilon(0.02));
 }
 
+TEST_CASE("plan: the result's tension tests on the fitted tension seeds alone, the path's other runs compression",
+          "[calibrate][plan][tension]") {
+    TempDir dir("cal-plan-tension-seeds");
+    const std::vector<std::string> sands = {"pre-blended", "Van Buren"};
+    const exp::CubeConfig cube = exp::load_cube_config(write_tiny_base(dir.path));
+    auto model = cal::make_dem_model(cube, sands);
+    model->prepare({1}, 1, {});
+    test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, sands, cube.material, {1}).dump(1));
+    const auto plan_with = [&](const std::string& tension_seeds) {
+        test::write_text(dir.path / "problem.toml",
+                         "[calibration]\nbase = \"base.toml\"\nseeds = [1, 2, 3]\nsand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5] }\n" +
+                             tension_seeds +
+                             "[targets]\nlab_results = \"lab_results.json\"\ntension = \"assumed_ratio\"\ntension_basis = \"test\"\n"
+                             "tension_weight = 0.0\n[parameters.cohesion_ratio]\nfree = false\n[parameters.strength_cv]\n"
+                             "free = false\n[solver]\nmax_runs = 40\n[output]\ndir = \"out\"\n");
+        return cal::plan_calibration(cal::load_calibration_problem(dir.path / "problem.toml"), 0.2);
+    };
+    const cal::CalibrationPlan every = plan_with(""), one = plan_with("tension_seeds = [2]\n");
+    // The scales alone free: the same path, start and rescaled, of 3 + 5 compression runs each;
+    // then the result's tension tests on every seed, or on seed 2 of each sand alone.
+    REQUIRE(every.runs.size() == 2);
+    REQUIRE(one.runs.size() == 2);
+    CHECK(every.expected_runs == 16 + 8);
+    CHECK(one.expected_runs == 16 + 2);
+    for (std::size_t s = 0; s < 2; ++s) {
+        INFO(sands[s]);
+        const int seeds = s == 0 ? 3 : 5;
+        CHECK(every.runs[s].compression_runs == 2 * seeds);
+        CHECK(every.runs[s].tension_runs == seeds);
+        CHECK(one.runs[s].compression_runs == 2 * seeds);
+        CHECK(one.runs[s].tension_runs == 1);
+    }
+}
+
 TEST_CASE("study plan: the cases the kind asks for, priced on their own specimens, and nothing is written",
           "[calibrate][plan][study]") {
     TempDir dir("study-plan-dem");

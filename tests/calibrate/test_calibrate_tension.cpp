@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "calibrate/objective.hpp"
+#include "calibrate/plan.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate/execution/run_message.hpp"
 #include "calibrate_fixture.hpp"
@@ -144,6 +145,82 @@ TEST_CASE("a tension target reported only (weight 0): the path runs compression 
     for (std::uint64_t seed : problem.seeds) st += model->run({0, seed, space.material(best.best), cal::CubeTest::tension}, 0.0).peak_pa;
     CHECK(best.best_eval.sands.at(0).value(cal::Quantity::tension) == Approx(st / static_cast<double>(problem.seeds.size())).epsilon(1e-12));
     CHECK(r.stages.at(0).noise_floor[static_cast<int>(cal::Quantity::tension)] > 0.0);
+}
+
+namespace {
+
+const std::vector<std::string> kTwoSands = {"pre-blended", "Van Buren"};
+
+/// Two sands, Van Buren with more seeds of its own, an assumed σc/σt of weight `weight`, the
+/// scales free (the shape fixed at the truth, as in the main job); the extra [calibration] keys
+/// (tension_seeds) in `calibration_keys`.
+fs::path two_sand_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& calibration_keys,
+                          double weight, const std::string& tension = "assumed_ratio") {
+    test::write_text(dir / "lab_results.json",
+                     test::synthetic_lab_results(model, kTwoSands, truth_material(), {101, 102, 103, 104}).dump(1));
+    return test::write_problem(dir, "seeds = [1, 2, 3]\nsand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5] }\n" + calibration_keys,
+                               "strain_weight = 0.0\ntension = \"" + tension + "\"\ntension_ratio = 10.0\ntension_basis = \"test\"\n" +
+                                   "tension_weight = " + std::to_string(weight) +
+                                   "\n[parameters.strength_cv]\nfree = false\nstart = 0.25\n"
+                                   "[parameters.cohesion_ratio]\nfree = false\nstart = 1.6\n[solver]\nmethod = \"scaling\"\nmax_runs = 400\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
+}
+
+}  // namespace
+
+// σt scatters a few per cent between cubes and its band is ±20 %, so [calibration]
+// tension_seeds runs the direct-tension test on some fitted seeds only (each a seed of every
+// sand). Oracle: with the tension reported only, the path and the result are those of the same
+// problem with tension on every seed; σt is the stand-in's own on the tension seeds alone.
+TEST_CASE("fitted tension seeds: the direct-tension tests run on those seeds of every sand alone", "[calibrate][tension]") {
+    auto model = cal::make_analytic_model(2, 0.001);
+    TempDir every_dir("cal-tension-seeds-every"), some_dir("cal-tension-seeds-some"), fitted_dir("cal-tension-seeds-fitted");
+    const cal::CalibrationProblem every = cal::load_calibration_problem(two_sand_problem(every_dir.path, *model, "", 0.0));
+    const cal::CalibrationProblem some =
+        cal::load_calibration_problem(two_sand_problem(some_dir.path, *model, "tension_seeds = [2]\n", 0.0));
+    REQUIRE(some.tension_seeds == std::vector<std::uint64_t>{2});
+    CHECK(some.tension_runs_per_test({0, 1}) == 2);
+    CHECK(every.tension_runs_per_test({0, 1}) == 8);
+    const cal::CalibrationResult r_every = cal::run_calibration(every, *model);
+    const cal::CalibrationResult r_some = cal::run_calibration(some, *model);
+
+    const cal::SolveResult& best = r_some.stages.at(0).solution;
+    CHECK(best.best == r_every.stages.at(0).solution.best);
+    REQUIRE(r_some.history.back().label == "tension at the result");
+    CHECK(r_some.history.back().tension_runs.size() == 2);
+    CHECK(r_every.history.back().tension_runs.size() == 8);
+    CHECK(r_some.runs_used == r_every.runs_used - 6);
+    CHECK(cal::expected_runs(some).fitted == r_some.runs_used);
+    const cal::ParameterSpace space(some.parameters, some.base.material);
+    for (std::size_t s = 0; s < kTwoSands.size(); ++s) {
+        const cal::SandOutcome& o = best.best_eval.sands.at(s);
+        CHECK(o.tension_ok == 1);
+        CHECK(o.value(cal::Quantity::tension) == model->run({s, 2, space.material(best.best), cal::CubeTest::tension}, 0.0).peak_pa);
+        CHECK(o.value(cal::Quantity::modulus) == r_every.stages.at(0).solution.best_eval.sands.at(s).value(cal::Quantity::modulus));
+    }
+    const nlohmann::json summary = report::summary_json(some, r_some);
+    CHECK(summary["tension_seeds_by_sand"]["Van Buren"] == nlohmann::json::array({2}));
+    CHECK(report::summary_json(every, r_every)["tension_seeds_by_sand"]["Van Buren"] == nlohmann::json::array({1, 2, 3, 4, 5}));
+    CHECK_THAT(report::summary_markdown(some, r_some), Catch::Contains("direct tension on seed 2 of each sand"));
+    CHECK_THAT(report::summary_markdown(every, r_every), !Catch::Contains("direct tension on seed"));
+
+    // A fitted tension target (weight 1): every evaluation runs the tension tests of those seeds alone.
+    const cal::CalibrationProblem fitted =
+        cal::load_calibration_problem(two_sand_problem(fitted_dir.path, *model, "tension_seeds = [1, 3]\n", 1.0));
+    const cal::CalibrationResult r_fitted = cal::run_calibration(fitted, *model);
+    for (const cal::Evaluation& e : r_fitted.history) {
+        INFO(e.label);
+        CHECK(e.runs.size() == 8);
+        CHECK(e.tension_runs.size() == 4);
+    }
+}
+
+TEST_CASE("bad fitted tension seeds are refused naming the key, line and rule", "[calibrate][tension]") {
+    TempDir dir("cal-tension-seeds-bad");
+    auto model = cal::make_analytic_model(2, 0.001);
+    CHECK_THROWS_WITH(cal::load_calibration_problem(two_sand_problem(dir.path, *model, "tension_seeds = [4]\n", 0.0)),
+                      Catch::Contains("problem.toml:5:") && Catch::Contains("'calibration.tension_seeds': seed 4 is not a seed of pre-blended (calibration.seeds)"));
+    CHECK_THROWS_WITH(cal::load_calibration_problem(two_sand_problem(dir.path, *model, "tension_seeds = [1]\n", 0.0, "none")),
+                      Catch::Contains("problem.toml:5:") && Catch::Contains("'calibration.tension_seeds' needs a direct-tension target"));
 }
 
 TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row pulls β as far as its weight says", "[calibrate][tension]") {
