@@ -217,7 +217,8 @@ TEST_CASE("plan: the result's tension tests on the fitted tension seeds alone, t
     test::write_text(dir.path / "lab_results.json", test::synthetic_lab_results(*model, sands, cube.material, {1}).dump(1));
     const auto plan_with = [&](const std::string& tension_seeds) {
         test::write_text(dir.path / "problem.toml",
-                         "[calibration]\nbase = \"base.toml\"\nseeds = [1, 2, 3]\nsand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5] }\n" +
+                         "[calibration]\nbase = \"base.toml\"\nseeds = [1, 2, 3]\n"
+                         "sand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5] }\n" +
                              tension_seeds +
                              "[targets]\nlab_results = \"lab_results.json\"\ntension = \"assumed_ratio\"\ntension_basis = \"test\"\n"
                              "tension_weight = 0.0\n[parameters.cohesion_ratio]\nfree = false\n[parameters.strength_cv]\n"

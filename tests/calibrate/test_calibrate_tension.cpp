@@ -159,10 +159,12 @@ fs::path two_sand_problem(const fs::path& dir, const cal::CubeModel& model, cons
     test::write_text(dir / "lab_results.json",
                      test::synthetic_lab_results(model, kTwoSands, truth_material(), {101, 102, 103, 104}).dump(1));
     return test::write_problem(dir, "seeds = [1, 2, 3]\nsand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5] }\n" + calibration_keys,
-                               "strain_weight = 0.0\ntension = \"" + tension + "\"\ntension_ratio = 10.0\ntension_basis = \"test\"\n" +
+                               "strain_weight = 0.0\ntension = \"" + tension +
+                                   "\"\ntension_ratio = 10.0\ntension_basis = \"test\"\n" +
                                    "tension_weight = " + std::to_string(weight) +
                                    "\n[parameters.strength_cv]\nfree = false\nstart = 0.25\n"
-                                   "[parameters.cohesion_ratio]\nfree = false\nstart = 1.6\n[solver]\nmethod = \"scaling\"\nmax_runs = 400\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
+                                   "[parameters.cohesion_ratio]\nfree = false\nstart = 1.6\n"
+                                   "[solver]\nmethod = \"scaling\"\nmax_runs = 400\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
 }
 
 }  // namespace
@@ -218,9 +220,11 @@ TEST_CASE("bad fitted tension seeds are refused naming the key, line and rule", 
     TempDir dir("cal-tension-seeds-bad");
     auto model = cal::make_analytic_model(2, 0.001);
     CHECK_THROWS_WITH(cal::load_calibration_problem(two_sand_problem(dir.path, *model, "tension_seeds = [4]\n", 0.0)),
-                      Catch::Contains("problem.toml:5:") && Catch::Contains("'calibration.tension_seeds': seed 4 is not a seed of pre-blended (calibration.seeds)"));
+                      Catch::Contains("problem.toml:5:") &&
+                          Catch::Contains("'calibration.tension_seeds': seed 4 is not a seed of pre-blended (calibration.seeds)"));
     CHECK_THROWS_WITH(cal::load_calibration_problem(two_sand_problem(dir.path, *model, "tension_seeds = [1]\n", 0.0, "none")),
-                      Catch::Contains("problem.toml:5:") && Catch::Contains("'calibration.tension_seeds' needs a direct-tension target"));
+                      Catch::Contains("problem.toml:5:") &&
+                          Catch::Contains("'calibration.tension_seeds' needs a direct-tension target"));
 }
 
 TEST_CASE("σt is homogeneous with the strengths: rescaling multiplies it by β, and its row pulls β as far as its weight says", "[calibrate][tension]") {
