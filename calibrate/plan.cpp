@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <numeric>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -154,10 +153,8 @@ RunCostPlan plan_sand(const CalibrationProblem& problem, const PlannedSpecimens&
     if (!problem.tension.fitted()) {
     } else if (set.name == "fit" && problem.tension_at_result_only()) {
         // the path's runs but the result's tension tests are compression runs, spread by seeds
-        std::vector<std::size_t> all(problem.sands.size());
-        std::iota(all.begin(), all.end(), std::size_t{0});
         ExpectedRuns compression = e;
-        compression.fitted = std::max(0, e.fitted - problem.tension_runs_per_test(all));
+        compression.fitted = std::max(0, e.fitted - problem.tension_runs_per_test());
         tension = static_cast<int>(problem.tension_seeds_of(s).size());
         per_set = fitted_runs_of(problem, compression, s) + tension;
     } else if (set.name == "validation") {

@@ -581,6 +581,12 @@ int CalibrationProblem::tension_runs_per_test(const std::vector<std::size_t>& of
     return static_cast<int>(n);
 }
 
+int CalibrationProblem::tension_runs_per_test() const {
+    std::vector<std::size_t> all(sands.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    return tension_runs_per_test(all);
+}
+
 int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) const {
     std::size_t n = 0;
     for (std::size_t sand : of_sands) n += seeds_of(sand).size();

@@ -186,6 +186,7 @@ struct CalibrationProblem {
     [[nodiscard]] std::vector<std::uint64_t> tension_seeds_of(std::size_t sand) const;
     /// The tension runs at one point: tension_seeds_of summed over `of_sands`.
     [[nodiscard]] int tension_runs_per_test(const std::vector<std::size_t>& of_sands) const;
+    [[nodiscard]] int tension_runs_per_test() const;
 
     /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
     [[nodiscard]] std::vector<Quantity> fitted_quantities() const;
