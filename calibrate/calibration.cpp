@@ -43,7 +43,10 @@ CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterS
         return stage;
     }
     measure_noise(stage.solution.best_eval, stage.noise_floor);
+    // σt of weight 0 is no residual, so the difference points run compression alone too.
+    evaluator.set_tension_companion(!problem.tension_at_result_only());
     stage.uncertainty = estimate_uncertainty(ctx, stage.solution);
+    evaluator.set_tension_companion(true);
     return stage;
 }
 

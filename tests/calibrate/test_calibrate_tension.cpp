@@ -32,14 +32,15 @@ exp::MaterialParams truth_material() { return test::material_at({kTruthModulus, 
 /// One sand, E* σ̄c and c̄/σ̄c free, the strength cv fixed at the truth, no strain target: the
 /// compression test alone gives E and σc, two numbers for three parameters (σc = σ̄c p ρ^q
 /// trades σ̄c against ρ); σt = σ̄c t (1 − r v) separates them.
-fs::path one_sand_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& tension_keys) {
+fs::path one_sand_problem(const fs::path& dir, const cal::CubeModel& model, const std::string& tension_keys,
+                          const std::string& method = "scaling") {
     std::vector<std::uint64_t> seeds;
     for (std::uint64_t s = 101; s <= 108; ++s) seeds.push_back(s);
     test::write_text(dir / "lab_results.json", test::synthetic_lab_results(model, kOneSand, truth_material(), seeds, true).dump(1));
     return test::write_problem(dir, "sands = [\"pre-blended\"]\nseeds = [1, 2]\n",
                                "strain_weight = 0.0\n" + tension_keys +
                                    "\n[parameters.strength_cv]\nfree = false\nstart = 0.25\n"
-                                   "[solver]\nmethod = \"scaling\"\nmax_runs = 400\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
+                                   "[solver]\nmethod = \"" + method + "\"\nmax_runs = 400\ntolerance = 0.002\n[output]\ndir = \"out\"\n");
 }
 
 double value_of(const cal::CalibrationProblem& p, const cal::CalibrationResult& r, const std::string& name) {
@@ -145,6 +146,36 @@ TEST_CASE("a tension target reported only (weight 0): the path runs compression 
     for (std::uint64_t seed : problem.seeds) st += model->run({0, seed, space.material(best.best), cal::CubeTest::tension}, 0.0).peak_pa;
     CHECK(best.best_eval.sands.at(0).value(cal::Quantity::tension) == Approx(st / static_cast<double>(problem.seeds.size())).epsilon(1e-12));
     CHECK(r.stages.at(0).noise_floor[static_cast<int>(cal::Quantity::tension)] > 0.0);
+}
+
+TEST_CASE("a tension target reported only: the uncertainty's difference points run compression alone",
+          "[calibrate][tension]") {
+    // Oracle: σt of weight 0 is no residual of the linearisation, so the difference points (a
+    // solver without the scaling path's closed form: one new point per free parameter) and the
+    // standard errors are those of the same problem without a tension target; the only tension
+    // tests of the job are the result's.
+    auto model = cal::make_analytic_model(1, 0.001);
+    TempDir without("cal-tension-fd-none"), reported("cal-tension-fd-reported");
+    const cal::CalibrationProblem plain = cal::load_calibration_problem(one_sand_problem(without.path, *model, "", "bobyqa"));
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(
+        one_sand_problem(reported.path, *model, "tension = \"lab\"\ntension_weight = 0.0\n", "bobyqa"));
+    REQUIRE(problem.tension_at_result_only());
+    const cal::CalibrationResult a = cal::run_calibration(plain, *model);
+    const cal::CalibrationResult r = cal::run_calibration(problem, *model);
+
+    const cal::Uncertainty& u = r.stages.at(0).uncertainty, &ua = a.stages.at(0).uncertainty;
+    REQUIRE(ua.computed);
+    REQUIRE(ua.fd_runs == 3 * static_cast<int>(plain.seeds.size()));  // E*, σ̄c, c̄/σ̄c: one point each
+    REQUIRE(u.computed);
+    CHECK(u.fd_runs == ua.fd_runs);
+    CHECK(u.std_error_natural == ua.std_error_natural);
+    std::size_t tension_runs = 0;
+    for (const cal::Evaluation& e : r.history) {
+        if (e.label == "uncertainty") CHECK(e.tension_runs.empty());
+        tension_runs += e.tension_runs.size();
+    }
+    CHECK(tension_runs == problem.seeds.size());
+    CHECK(r.runs_used == a.runs_used + static_cast<int>(problem.seeds.size()));
 }
 
 namespace {
