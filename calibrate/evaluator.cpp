@@ -170,6 +170,12 @@ void Evaluator::run_queued(std::vector<Job>& jobs, const std::vector<std::size_t
         ++executed_;
         if (!job.outcome.ok()) ++failed_;
         run_seconds_ += job.outcome.wall_seconds;
+        if (sand_runs_.size() <= job.sand) {
+            sand_runs_.resize(job.sand + 1, 0);
+            sand_run_seconds_.resize(job.sand + 1, 0.0);
+        }
+        sand_run_seconds_[job.sand] += job.outcome.wall_seconds;
+        ++sand_runs_[job.sand];
         report(evaluations);
     });
     for (Job& job : jobs)
@@ -229,6 +235,8 @@ void Evaluator::report(int evaluations) {
     p.evaluations = evaluations;
     p.elapsed_s = seconds();
     p.mean_run_s = executed_ ? run_seconds_ / executed_ : 0.0;
+    for (std::size_t s = 0; s < sand_runs_.size(); ++s)
+        p.sand_mean_run_s.push_back(sand_runs_[s] ? sand_run_seconds_[s] / sand_runs_[s] : 0.0);
     p.best_objective = best_objective_;
     p.workers = executor_.slots();
     progress_(p);

@@ -63,6 +63,7 @@ public:
 struct Progress {
     int runs_used = 0, max_runs = 0, from_ledger = 0, evaluations = 0;
     double elapsed_s = 0.0, mean_run_s = 0.0, best_objective = 0.0;
+    std::vector<double> sand_mean_run_s;  ///< per problem sand: the mean of its runs so far [s] (0: none yet)
     int workers = 1;
 };
 
@@ -137,6 +138,8 @@ private:
     std::set<std::string> used_;
     int executed_ = 0, served_ = 0, failed_ = 0, reserve_ = 0;
     double run_seconds_ = 0.0, best_objective_ = 0.0;
+    std::vector<double> sand_run_seconds_;  ///< per problem sand: Σ wall seconds of its runs here
+    std::vector<int> sand_runs_;            ///< per problem sand: its runs here
     std::vector<Evaluation> history_;
     std::chrono::steady_clock::time_point start_;
 };

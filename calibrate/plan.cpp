@@ -279,16 +279,45 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     const CalibrationResult r = run_calibration(dry, *model);
     ExpectedRuns e{r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
     const double fitted_edge = problem.base.specimen.genesis.edge;
-    if (problem.validation.edge > 0.0 && fitted_edge > 0.0) e.validation_run_weight = std::pow(problem.validation.edge / fitted_edge, 3);
+    if (problem.validation.edge > 0.0 && fitted_edge > 0.0) {
+        const double edges = problem.validation.edge / fitted_edge;
+        e.validation_grains_ratio = std::pow(edges, 3);
+        e.validation_steps_ratio = problem.base.auto_strain_rate ? edges : 1.0;
+        e.validation_run_weight = e.validation_grains_ratio * e.validation_steps_ratio;
+    }
+    const double tension = problem.tension.fitted() ? problem.tension_runs_per_test() : 0.0;
+    const double per_test = problem.runs_per_test() + tension;
+    for (std::size_t s = 0; s < problem.sands.size(); ++s) {
+        const double own = problem.runs_per_test({s}) + (tension > 0.0 ? problem.tension_runs_per_test({s}) : 0.0);
+        e.fitted_share.push_back(own / per_test);
+        e.validation_share.push_back(1.0 / static_cast<double>(problem.sands.size()));
+    }
     return e;
 }
+
+namespace {
+
+/// Σ over sands of share × the sand's mean run time so far (the mean of all runs where a sand
+/// has none yet); the mean of all runs without shares.
+double mean_run_seconds(const Progress& p, const std::vector<double>& shares) {
+    if (shares.empty()) return p.mean_run_s;
+    double sum = 0.0;
+    for (std::size_t s = 0; s < shares.size(); ++s) {
+        const bool timed = s < p.sand_mean_run_s.size() && p.sand_mean_run_s[s] > 0.0;
+        sum += shares[s] * (timed ? p.sand_mean_run_s[s] : p.mean_run_s);
+    }
+    return sum;
+}
+
+}  // namespace
 
 double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper) {
     if (p.mean_run_s <= 0.0) return std::nan("");
     const int path_left = std::max(0, std::min(p.max_runs, std::max(e.fitted, p.runs_used)) - p.runs_used);
     const int fitted_left = upper ? p.max_runs - p.runs_used : path_left;
-    const double runs_left = fitted_left + e.validation * e.validation_run_weight;
-    return p.mean_run_s / std::max(1, p.workers) * runs_left;
+    const double seconds = fitted_left * mean_run_seconds(p, e.fitted_share) +
+                           e.validation * e.validation_run_weight * mean_run_seconds(p, e.validation_share);
+    return seconds / std::max(1, p.workers);
 }
 
 CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe_seconds) {

@@ -85,15 +85,24 @@ struct CalibrationPlan : PlanCost {
 /// runs, scale-up runs}.
 struct ExpectedRuns {
     int fitted = 0, evaluations = 0, validation = 0, scale_up = 0;
-    /// A validation run's cost over a fitted run's: the grains of their cubes, which the same
-    /// gradation fills, (validation edge / fitted edge)³ [-].
+    /// A validation run's grains over a fitted run's of the same sand: the same gradation fills
+    /// both cubes, (validation edge / fitted edge)³ [-].
+    double validation_grains_ratio = 1.0;
+    /// Its steps over a fitted run's: at the automatic rate, which gives the platens a fixed number
+    /// of wave transits over the cube's height to the expected peak, the edge ratio; else 1 [-].
+    double validation_steps_ratio = 1.0;
+    /// A validation run's cost over a fitted run's of the same sand: grains × steps [-].
     double validation_run_weight = 1.0;
+    /// Each sand's share of the path's runs (its seeds, and its tension seeds with a tension
+    /// target, over every sand's) and of the validation runs (alike for every sand) [-].
+    std::vector<double> fitted_share, validation_share;
 };
 ExpectedRuns expected_runs(const CalibrationProblem& problem);
 
 /// The progress line's ETA [s]: the runs still expected on the solver's path (`upper`: the
-/// budget's remaining runs instead), then the validation runs at their weight, at the mean run
-/// time so far, `workers` at a time. NaN while no run has been timed (all from the ledger).
+/// budget's remaining runs instead), then the validation runs at their weight, each sand's
+/// share at that sand's mean run time so far (the mean of every run for a sand not yet timed),
+/// `workers` at a time. NaN while no run has been timed (all from the ledger).
 double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper = false);
 
 /// The plan of `problem` (steps 1-5 above). Throws what the run would throw for bad input.

@@ -51,6 +51,7 @@ py::dict progress_dict(const cal::Progress& p) {
     d["evaluations"] = p.evaluations;
     d["elapsed_s"] = p.elapsed_s;
     d["mean_run_s"] = p.mean_run_s;
+    d["sand_mean_run_s"] = p.sand_mean_run_s;  // per sand of the problem, in its order (0: no run yet)
     d["best_objective"] = p.best_objective;
     d["workers"] = p.workers;
     return d;

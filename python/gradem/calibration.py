@@ -18,7 +18,8 @@ def calibrate(problem, max_runs=None, workers=None, out=None, progress=None, log
     """A calibration (calibrate/README.md): writes its outputs and returns summary.json as a dict.
 
     progress(p) gets a dict after every run (runs_used, max_runs, from_ledger, evaluations,
-    elapsed_s, mean_run_s, best_objective, workers); log(line) every milestone line; report
+    elapsed_s, mean_run_s, sand_mean_run_s: per sand in the problem's order, 0 before its first
+    run, best_objective, workers); log(line) every milestone line; report
     makes report.html too (python3-matplotlib).
     """
     return _gradem.calibrate(os.fspath(problem), max_runs, workers, os.fspath(out) if out else "", progress, log, report)

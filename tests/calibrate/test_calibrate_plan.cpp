@@ -62,10 +62,11 @@ TEST_CASE("plan: the expected runs are the calibration's own on the analytic sta
     CHECK(expected.fitted <= 40);
 }
 
-// A validation run on larger cubes costs what their grains cost: the ETA counts it as
-// (validation edge / fitted edge)^3 fitted runs, the ratio of the grains genesis samples for
-// the two cubes of the same gradation.
-TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains", "[calibrate][plan]") {
+// A validation run on larger cubes costs what their grains and steps cost: the ETA counts it as
+// (validation edge / fitted edge)^3 fitted runs of its sand, the ratio of the grains genesis
+// samples for the two cubes of the same gradation, times the edge ratio again at the automatic
+// rate (a fixed number of wave transits over the cube's height).
+TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains and steps", "[calibrate][plan]") {
     TempDir dir("cal-plan-eta");
     write_analytic_lab(dir.path);
     const auto problem_with = [&](const std::string& validation) {
@@ -77,8 +78,28 @@ TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains",
     const cal::CalibrationProblem same = problem_with("[validation]\nseeds = [21]\n");
     const cal::ExpectedRuns e = cal::expected_runs(larger);
     const double fitted_edge = larger.base.specimen.genesis.edge;
-    CHECK(e.validation_run_weight == Approx(std::pow(3.75e-3 / fitted_edge, 3)));
+    REQUIRE(larger.base.auto_strain_rate);
+    CHECK(e.validation_grains_ratio == Approx(std::pow(3.75e-3 / fitted_edge, 3)));
+    CHECK(e.validation_steps_ratio == Approx(3.75e-3 / fitted_edge));
+    CHECK(e.validation_run_weight == Approx(e.validation_grains_ratio * e.validation_steps_ratio));
     CHECK(cal::expected_runs(same).validation_run_weight == 1.0);
+
+    // The steps' ratio is the automatic rate's: the same grains in a cube of 3.75 mm and of the
+    // fitted edge (every coordinate scaled) are loaded at rates in the inverse ratio of the edges.
+    exp::Packing small, big;
+    const double k = 3.75e-3 / fitted_edge;
+    for (int i = 0; i < 8; ++i) {
+        const Vec3 x{0.25e-3 * (1 + i % 2), 0.25e-3 * (1 + i / 2 % 2), 0.25e-3 * (1 + i / 4)};
+        small.position.push_back(x);
+        small.radius.push_back(0.1e-3 + 0.01e-3 * i);
+        big.position.push_back(x * k);
+        big.radius.push_back(small.radius.back() * k);
+    }
+    small.density = big.density = 2650.0;
+    small.box_hi = {fitted_edge, fitted_edge, fitted_edge};
+    big.box_hi = small.box_hi * k;
+    CHECK(exp::quasi_static_strain_rate(small, larger.base.material) / exp::quasi_static_strain_rate(big, larger.base.material) ==
+          Approx(e.validation_steps_ratio).epsilon(1e-12));
 
     // The weight is the grains' ratio: genesis fills each cube with grains of the same curve.
     exp::CubeConfig config = larger.base;
@@ -89,7 +110,7 @@ TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains",
         return static_cast<double>(
             exp::sample_grains(curve, spec.size_rule, spec.genesis.target_solid_fraction * edge * edge * edge, 21).diameters.size());
     };
-    CHECK(grains(3.75e-3) / grains(fitted_edge) == Approx(e.validation_run_weight).epsilon(0.05));
+    CHECK(grains(3.75e-3) / grains(fitted_edge) == Approx(e.validation_grains_ratio).epsilon(0.05));
 
     // After 6 of 26 expected runs at 30 s each on 2 workers: 20 fitted runs and the validation's.
     cal::Progress p;
@@ -103,6 +124,64 @@ TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains",
     CHECK(cal::eta_seconds(p, path, true) == Approx(15.0 * (34 + path.validation * e.validation_run_weight)));
     p.mean_run_s = 0.0;  // every run so far from the ledger: no estimate
     CHECK(std::isnan(cal::eta_seconds(p, path)));
+}
+
+// The sands' runs differ in cost (a finer sand fills a cube with more grains) and in number
+// (sand_seeds): the ETA prices each sand's share of the remaining runs at that sand's own mean
+// run time, so a path that runs the cheap sand more than the validation does is not priced at
+// the cheap sand's rate.
+TEST_CASE("plan: the progress ETA prices each sand's runs at that sand's mean run time", "[calibrate][plan]") {
+    TempDir dir("cal-plan-eta-sands");
+    write_analytic_lab(dir.path);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(test::write_problem(
+        dir.path, "model = \"analytic\"\nseeds = [1, 2]\nsand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5, 6] }\n",
+        "[solver]\nmax_runs = 80\n[validation]\nseeds = [21, 22, 23]\n[output]\ndir = \"out\"\n"));
+    cal::ExpectedRuns e = cal::expected_runs(problem);
+    REQUIRE(e.fitted_share.size() == 2);
+    CHECK(e.fitted_share[0] == Approx(2.0 / 8.0));  // pre-blended: 2 of every evaluation's 8 runs
+    CHECK(e.fitted_share[1] == Approx(6.0 / 8.0));
+    CHECK(e.validation_share == std::vector<double>{0.5, 0.5});  // 3 seeds of each sand
+    CHECK(e.validation == 6);
+
+    // After the first evaluation: pre-blended 60 s a run, Van Buren 20 s (mean of the 8: 30 s).
+    cal::Progress p;
+    p.runs_used = 8;
+    p.max_runs = 80;
+    p.workers = 2;
+    p.mean_run_s = (2 * 60.0 + 6 * 20.0) / 8.0;
+    p.sand_mean_run_s = {60.0, 20.0};
+    e.fitted = 16;
+    e.validation_run_weight = 1.5;
+    const double path = 8 * (0.25 * 60.0 + 0.75 * 20.0), validation = 6 * 1.5 * (0.5 * 60.0 + 0.5 * 20.0);
+    CHECK(cal::eta_seconds(p, e) == Approx((path + validation) / 2.0));
+    CHECK(cal::eta_seconds(p, e) > (8 + 6 * 1.5) * p.mean_run_s / 2.0);  // the mean of all runs prices it short
+    // The evaluator reports each sand's mean: runs that take 60 s + seed of pre-blended and
+    // 20 s + seed of Van Buren give 61.5 and 23.5 s after the first evaluation (seeds 1-2, 1-6).
+    class TimedModel final : public cal::CubeModel {
+    public:
+        void prepare(const cal::PackingSeeds&, int, const std::function<void(const std::string&)>&) override {}
+        cal::RunOutcome run(const cal::RunRequest& q, double t) const override {
+            cal::RunOutcome o = inner_->run(q, t);
+            o.wall_seconds = (q.sand == 0 ? 60.0 : 20.0) + static_cast<double>(q.seed);
+            return o;
+        }
+        std::string fingerprint() const override { return inner_->fingerprint() + "; timed"; }
+        std::string run_fingerprint(cal::CubeTest t) const override { return inner_->run_fingerprint(t) + "; timed"; }
+
+    private:
+        std::unique_ptr<cal::CubeModel> inner_ = cal::make_analytic_model(2, 0.001);
+    } timed;
+    const cal::CalibrationProblem unvalidated = cal::load_calibration_problem(test::write_problem(
+        dir.path, "model = \"analytic\"\nseeds = [1, 2]\nsand_seeds = { \"Van Buren\" = [1, 2, 3, 4, 5, 6] }\n",
+        "[solver]\nmax_runs = 80\n[output]\ndir = \"out\"\n", "unvalidated.toml"));
+    std::vector<cal::Progress> seen;
+    cal::run_calibration(unvalidated, timed, {}, [&](const cal::Progress& q) { seen.push_back(q); });
+    REQUIRE(seen.size() >= 8);
+    CHECK(seen[7].sand_mean_run_s == std::vector<double>{61.5, 23.5});
+    CHECK(seen[7].mean_run_s == Approx((61 + 62 + 21 + 22 + 23 + 24 + 25 + 26) / 8.0));
+    // A sand not timed yet is priced at the mean of every run so far.
+    p.sand_mean_run_s = {60.0};
+    CHECK(cal::eta_seconds(p, e) == Approx((8 * (0.25 * 60.0 + 0.75 * 30.0) + 6 * 1.5 * (0.5 * 60.0 + 0.5 * 30.0)) / 2.0));
 }
 
 TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the runs it plans", "[calibrate][plan]") {

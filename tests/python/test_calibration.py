@@ -34,6 +34,7 @@ def test_calibrate_equals_the_command_line(analytic_problem, tmp_path):
     assert without_places(summary) == without_places(cli)
     assert summary["runs"] == cli["runs"] and summary["parameters"] == cli["parameters"]
     assert seen and seen[-1]["runs_used"] <= 24 and all(p["max_runs"] == 24 for p in seen)
+    assert len(seen[-1]["sand_mean_run_s"]) == 2 and all(t >= 0.0 for t in seen[-1]["sand_mean_run_s"])  # both sands ran
 
     py, cli = gradem.Ledger(tmp_path / "py" / "ledger.sqlite"), gradem.Ledger(tmp_path / "cli" / "ledger.sqlite")
     assert len(py) == len(cli) > 0
