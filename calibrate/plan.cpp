@@ -278,13 +278,16 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     const auto model = make_model(dry);
     const CalibrationResult r = run_calibration(dry, *model);
     ExpectedRuns e{r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
+    // A run on cubes of edge L against one on the fitted edge L_f: (L/L_f)³ the grains, and at
+    // the automatic rate L/L_f the steps (a set's edge 0: the fit's).
     const double fitted_edge = problem.base.specimen.genesis.edge;
-    if (problem.validation.edge > 0.0 && fitted_edge > 0.0) {
-        const double edges = problem.validation.edge / fitted_edge;
-        e.validation_grains_ratio = std::pow(edges, 3);
-        e.validation_steps_ratio = problem.base.auto_strain_rate ? edges : 1.0;
-        e.validation_run_weight = e.validation_grains_ratio * e.validation_steps_ratio;
-    }
+    const auto edges = [&](double edge) { return edge > 0.0 && fitted_edge > 0.0 ? edge / fitted_edge : 1.0; };
+    const auto steps = [&](double ratio) { return problem.base.auto_strain_rate ? ratio : 1.0; };
+    const double validation = edges(problem.validation.edge), scale_up = edges(problem.scale_up.edge);
+    e.validation_grains_ratio = std::pow(validation, 3);
+    e.validation_steps_ratio = steps(validation);
+    e.validation_run_weight = e.validation_grains_ratio * e.validation_steps_ratio;
+    e.scale_up_run_weight = std::pow(scale_up, 3) * steps(scale_up);
     const double tension = problem.tension.fitted() ? problem.tension_runs_per_test() : 0.0;
     const double per_test = problem.runs_per_test() + tension;
     for (std::size_t s = 0; s < problem.sands.size(); ++s) {
@@ -315,8 +318,10 @@ double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper) {
     if (p.mean_run_s <= 0.0) return std::nan("");
     const int path_left = std::max(0, std::min(p.max_runs, std::max(e.fitted, p.runs_used)) - p.runs_used);
     const int fitted_left = upper ? p.max_runs - p.runs_used : path_left;
+    // the scale-up and validation sets run every sand alike
     const double seconds = fitted_left * mean_run_seconds(p, e.fitted_share) +
-                           e.validation * e.validation_run_weight * mean_run_seconds(p, e.validation_share);
+                           (e.scale_up * e.scale_up_run_weight + e.validation * e.validation_run_weight) *
+                               mean_run_seconds(p, e.validation_share);
     return seconds / std::max(1, p.workers);
 }
 

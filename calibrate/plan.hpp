@@ -93,6 +93,8 @@ struct ExpectedRuns {
     double validation_steps_ratio = 1.0;
     /// A validation run's cost over a fitted run's of the same sand: grains × steps [-].
     double validation_run_weight = 1.0;
+    /// A scale-up run's, the same way [-].
+    double scale_up_run_weight = 1.0;
     /// Each sand's share of the path's runs (its seeds, and its tension seeds with a tension
     /// target, over every sand's) and of the validation runs (alike for every sand) [-].
     std::vector<double> fitted_share, validation_share;
@@ -100,7 +102,7 @@ struct ExpectedRuns {
 ExpectedRuns expected_runs(const CalibrationProblem& problem);
 
 /// The progress line's ETA [s]: the runs still expected on the solver's path (`upper`: the
-/// budget's remaining runs instead), then the validation runs at their weight, each sand's
+/// budget's remaining runs instead), then the scale-up and validation runs at their weights, each sand's
 /// share at that sand's mean run time so far (the mean of every run for a sand not yet timed),
 /// `workers` at a time. NaN while no run has been timed (all from the ledger).
 double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper = false);

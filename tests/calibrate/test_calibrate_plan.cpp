@@ -83,6 +83,10 @@ TEST_CASE("plan: the progress ETA counts a validation run by its cube's grains a
     CHECK(e.validation_steps_ratio == Approx(3.75e-3 / fitted_edge));
     CHECK(e.validation_run_weight == Approx(e.validation_grains_ratio * e.validation_steps_ratio));
     CHECK(cal::expected_runs(same).validation_run_weight == 1.0);
+    const cal::ExpectedRuns scaled = cal::expected_runs(problem_with("[scale_up]\nedge_mm = 3.75\nseeds = [11]\n[validation]\nseeds = [21]\n"));
+    CHECK(scaled.scale_up_run_weight == Approx(e.validation_run_weight));  // the same edge, the same cost
+    CHECK(scaled.validation_run_weight == 1.0);
+    CHECK(scaled.scale_up == 2);  // one seed per sand
 
     // The steps' ratio is the automatic rate's: the same grains in a cube of 3.75 mm and of the
     // fitted edge (every coordinate scaled) are loaded at rates in the inverse ratio of the edges.
@@ -155,6 +159,10 @@ TEST_CASE("plan: the progress ETA prices each sand's runs at that sand's mean ru
     const double path = 8 * (0.25 * 60.0 + 0.75 * 20.0), validation = 6 * 1.5 * (0.5 * 60.0 + 0.5 * 20.0);
     CHECK(cal::eta_seconds(p, e) == Approx((path + validation) / 2.0));
     CHECK(cal::eta_seconds(p, e) > (8 + 6 * 1.5) * p.mean_run_s / 2.0);  // the mean of all runs prices it short
+    cal::ExpectedRuns with_scale_up = e;  // two scale-up runs of twice a fitted run's cost, a sand each
+    with_scale_up.scale_up = 2;
+    with_scale_up.scale_up_run_weight = 2.0;
+    CHECK(cal::eta_seconds(p, with_scale_up) == Approx((path + validation + 2 * 2.0 * (0.5 * 60.0 + 0.5 * 20.0)) / 2.0));
     // The evaluator reports each sand's mean: runs that take 60 s + seed of pre-blended and
     // 20 s + seed of Van Buren give 61.5 and 23.5 s after the first evaluation (seeds 1-2, 1-6).
     class TimedModel final : public cal::CubeModel {
