@@ -41,9 +41,9 @@ struct CalibrateOptions {
 
 /// The progress line: rewritten in place on a terminal, one line per run otherwise. The ETA
 /// (cal::eta_seconds) follows the plan's model (calibrate/plan.hpp): the runs still expected on
-/// the solver's path, then the validation runs weighted by their cubes' grains and steps, each
-/// sand's share at its mean run time so far, `workers` at a time; the budget's remaining runs
-/// give the upper bound.
+/// the solver's path, then the scale-up and validation runs weighted by their cubes' grains and
+/// steps, each sand's share at its mean run time so far, `workers` at a time; the budget's
+/// remaining runs give the upper bound.
 void print_progress(const cal::Progress& p, const cal::ExpectedRuns& expected) {
     std::FILE* notes = console().notes();
     const bool tty = isatty(fileno(notes)) != 0;

@@ -96,15 +96,15 @@ struct ExpectedRuns {
     /// A scale-up run's, the same way [-].
     double scale_up_run_weight = 1.0;
     /// Each sand's share of the path's runs (its seeds, and its tension seeds with a tension
-    /// target, over every sand's) and of the validation runs (alike for every sand) [-].
+    /// target, over every sand's) and of the scale-up and validation runs (alike for every sand) [-].
     std::vector<double> fitted_share, validation_share;
 };
 ExpectedRuns expected_runs(const CalibrationProblem& problem);
 
 /// The progress line's ETA [s]: the runs still expected on the solver's path (`upper`: the
-/// budget's remaining runs instead), then the scale-up and validation runs at their weights, each sand's
-/// share at that sand's mean run time so far (the mean of every run for a sand not yet timed),
-/// `workers` at a time. NaN while no run has been timed (all from the ledger).
+/// budget's remaining runs instead), then the scale-up and validation runs at their weights,
+/// each sand's share at that sand's mean run time so far (the mean of every run for a sand not
+/// yet timed), `workers` at a time. NaN while no run has been timed (all from the ledger).
 double eta_seconds(const Progress& p, const ExpectedRuns& e, bool upper = false);
 
 /// The plan of `problem` (steps 1-5 above). Throws what the run would throw for bad input.
