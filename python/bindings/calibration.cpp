@@ -17,6 +17,7 @@
 
 #include "calibrate/calibration.hpp"
 #include "calibrate/execution/ledger.hpp"
+#include "calibrate/plan.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate/study/study.hpp"
 #include "calibrate/study/study_config.hpp"
@@ -69,11 +70,21 @@ void apply_out(const std::string& out, fs::path& out_dir, fs::path& ledger) {
     if (default_ledger) ledger = out_dir / "ledger.sqlite";
 }
 
-std::function<void(const cal::Progress&)> progress_hook(const py::object& progress, const std::atomic<bool>& cancel) {
+/// The progress callback of a whole calibration: the dict, with the command line's ETA of the
+/// runs still expected (`eta_s`) and its upper bound from the budget (`eta_max_s`), NaN while
+/// no run has been timed (calibrate/plan.hpp eta_seconds).
+std::function<void(const cal::Progress&)> progress_hook(const py::object& progress, const std::atomic<bool>& cancel,
+                                                         const cal::ExpectedRuns& expected) {
     const py::object* callback = progress.is_none() ? nullptr : &progress;
-    return [callback, &cancel](const cal::Progress& p) {
+    return [callback, &cancel, &expected](const cal::Progress& p) {
         if (cancel) throw Interrupted();
-        if (callback) call_python(*callback, [&] { return progress_dict(p); });
+        if (!callback) return;
+        call_python(*callback, [&] {
+            py::dict d = progress_dict(p);
+            d["eta_s"] = cal::eta_seconds(p, expected);
+            d["eta_max_s"] = cal::eta_seconds(p, expected, true);
+            return d;
+        });
     };
 }
 
@@ -95,11 +106,12 @@ py::object calibrate(const std::string& path, std::optional<int> max_runs, std::
     if (workers) problem.workers = *workers;
     std::unique_ptr<cal::CubeModel> model = cal::make_model(problem);
     warnings.emit();
+    const cal::ExpectedRuns expected = progress.is_none() ? cal::ExpectedRuns{} : cal::expected_runs(problem);
     std::atomic<bool> cancel = false;
     cal::CalibrationResult result;
     in_background(
         [&] {
-            result = cal::run_calibration(problem, *model, log_hook(log, cancel), progress_hook(progress, cancel));
+            result = cal::run_calibration(problem, *model, log_hook(log, cancel), progress_hook(progress, cancel, expected));
             report::write_calibration_outputs(problem, result);
         },
         cancel);

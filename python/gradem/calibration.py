@@ -19,7 +19,8 @@ def calibrate(problem, max_runs=None, workers=None, out=None, progress=None, log
 
     progress(p) gets a dict after every run (runs_used, max_runs, from_ledger, evaluations,
     elapsed_s, mean_run_s, sand_mean_run_s: per sand in the problem's order, 0 before its first
-    run, best_objective, workers); log(line) every milestone line; report
+    run, best_objective, workers, and the command line's ETA in seconds: eta_s, and eta_max_s from
+    the budget, NaN while no run has been timed); log(line) every milestone line; report
     makes report.html too (python3-matplotlib).
     """
     return _gradem.calibrate(os.fspath(problem), max_runs, workers, os.fspath(out) if out else "", progress, log, report)

@@ -3,6 +3,7 @@ the command line's calibration, a repeated point from the ledger, scipy recoveri
 parameters."""
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -35,6 +36,10 @@ def test_calibrate_equals_the_command_line(analytic_problem, tmp_path):
     assert summary["runs"] == cli["runs"] and summary["parameters"] == cli["parameters"]
     assert seen and seen[-1]["runs_used"] <= 24 and all(p["max_runs"] == 24 for p in seen)
     assert len(seen[-1]["sand_mean_run_s"]) == 2 and all(t >= 0.0 for t in seen[-1]["sand_mean_run_s"])  # both sands ran
+    # the ETA of the runs still expected, never more than the budget's bound; NaN only while no run was timed
+    timed = [p for p in seen if p["mean_run_s"] > 0.0]
+    assert timed and all(0.0 <= p["eta_s"] <= p["eta_max_s"] for p in timed)
+    assert all(math.isnan(p["eta_s"]) for p in seen if p["mean_run_s"] == 0.0)
 
     py, cli = gradem.Ledger(tmp_path / "py" / "ledger.sqlite"), gradem.Ledger(tmp_path / "cli" / "ledger.sqlite")
     assert len(py) == len(cli) > 0
