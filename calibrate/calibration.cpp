@@ -133,8 +133,7 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
     const ParameterSpace space(problem.parameters, problem.base.material);
     Evaluator evaluator(problem, space, executor, ledger, model, progress);
     // 3. The mode's solves.
-    std::vector<std::size_t> all;
-    for (std::size_t s = 0; s < problem.sands.size(); ++s) all.push_back(s);
+    const std::vector<std::size_t> all = problem.sand_indices();
     if (problem.mode == Mode::joint) {
         result.stages.push_back(solve_stage(problem, space, evaluator, "joint", all, log));
     } else if (problem.mode == Mode::per_sand) {

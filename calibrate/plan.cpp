@@ -288,10 +288,10 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     e.validation_steps_ratio = steps(validation);
     e.validation_run_weight = e.validation_grains_ratio * e.validation_steps_ratio;
     e.scale_up_run_weight = std::pow(scale_up, 3) * steps(scale_up);
-    const double tension = problem.tension.fitted() ? problem.tension_runs_per_test() : 0.0;
-    const double per_test = problem.runs_per_test() + tension;
+    const bool tension = problem.tension.fitted();
+    const double per_test = problem.runs_per_test() + (tension ? problem.tension_runs_per_test() : 0);
     for (std::size_t s = 0; s < problem.sands.size(); ++s) {
-        const double own = problem.runs_per_test({s}) + (tension > 0.0 ? problem.tension_runs_per_test({s}) : 0.0);
+        const double own = problem.runs_per_test({s}) + (tension ? problem.tension_runs_per_test({s}) : 0);
         e.fitted_share.push_back(own / per_test);
         e.validation_share.push_back(1.0 / static_cast<double>(problem.sands.size()));
     }

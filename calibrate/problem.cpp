@@ -575,17 +575,19 @@ std::vector<std::uint64_t> CalibrationProblem::tension_seeds_of(std::size_t sand
     return out;
 }
 
+std::vector<std::size_t> CalibrationProblem::sand_indices() const {
+    std::vector<std::size_t> all(sands.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    return all;
+}
+
 int CalibrationProblem::tension_runs_per_test(const std::vector<std::size_t>& of_sands) const {
     std::size_t n = 0;
     for (std::size_t sand : of_sands) n += tension_seeds_of(sand).size();
     return static_cast<int>(n);
 }
 
-int CalibrationProblem::tension_runs_per_test() const {
-    std::vector<std::size_t> all(sands.size());
-    std::iota(all.begin(), all.end(), std::size_t{0});
-    return tension_runs_per_test(all);
-}
+int CalibrationProblem::tension_runs_per_test() const { return tension_runs_per_test(sand_indices()); }
 
 int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) const {
     std::size_t n = 0;
@@ -593,11 +595,7 @@ int CalibrationProblem::runs_per_test(const std::vector<std::size_t>& of_sands) 
     return static_cast<int>(n);
 }
 
-int CalibrationProblem::runs_per_test() const {
-    std::vector<std::size_t> all(sands.size());
-    std::iota(all.begin(), all.end(), std::size_t{0});
-    return runs_per_test(all);
-}
+int CalibrationProblem::runs_per_test() const { return runs_per_test(sand_indices()); }
 
 std::string CalibrationProblem::describe() const {
     std::ostringstream d;

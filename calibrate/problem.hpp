@@ -187,6 +187,8 @@ struct CalibrationProblem {
     /// The tension runs at one point: tension_seeds_of summed over `of_sands`.
     [[nodiscard]] int tension_runs_per_test(const std::vector<std::size_t>& of_sands) const;
     [[nodiscard]] int tension_runs_per_test() const;
+    /// 0, 1, ..., sands.size() - 1: every sand of the problem.
+    [[nodiscard]] std::vector<std::size_t> sand_indices() const;
 
     /// The quantities each sand's residuals hold: kQuantities, then tension when it is fitted.
     [[nodiscard]] std::vector<Quantity> fitted_quantities() const;
