@@ -146,7 +146,7 @@ public:
         if (!tension_) throw std::logic_error("DemCubeModel: no tension test (made without it)");
         std::ostringstream f;
         f << compression_fingerprint() << std::hexfloat << "; direct tension v1 grip " << tension_->spec.grip_depth_fraction
-          << " auto peak strain " << tension_->auto_peak_strain;
+          << " auto peak strain " << tension_->auto_peak_strain << " transits " << tension_->auto_transits;
         return f.str();
     }
 

@@ -50,6 +50,7 @@ TensionConfig read_tension_config(common::toml_io::Context& ctx, const toml::tab
     Section s(ctx, root, "tension");
     s.real("grip_depth_fraction", t.spec.grip_depth_fraction);
     s.real("auto_peak_strain", t.auto_peak_strain);
+    s.real("auto_transits", t.auto_transits);
     s.finish();
     if (auto why = t.spec.invalid_reason()) {
         // config.test was validated by load_cube_config: only the grips can be wrong here.
@@ -58,6 +59,7 @@ TensionConfig read_tension_config(common::toml_io::Context& ctx, const toml::tab
     }
     if (ctx.keys["tension.auto_peak_strain"].line > 0 && !(t.auto_peak_strain > 0.0 && t.auto_peak_strain < 0.01))
         reject(ctx, "tension.auto_peak_strain", "in (0, 0.01)");
+    if (!(t.auto_transits >= 10.0 && t.auto_transits <= 10000.0)) reject(ctx, "tension.auto_transits", "in [10, 10000]");
     return t;
 }
 
@@ -74,7 +76,7 @@ double tension_strain_rate(const CubeConfig& config, const TensionConfig& tensio
     if (!config.auto_strain_rate) return config.test.loading.strain_rate;
     const double peak = tension.auto_peak_strain > 0.0 ? tension.auto_peak_strain
                                                        : expected_tensile_peak_strain(config.material);
-    return quasi_static_strain_rate(packing, config.material, peak);
+    return quasi_static_strain_rate(packing, config.material, peak, tension.auto_transits);
 }
 
 }  // namespace gradem::exp

@@ -84,22 +84,28 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
     const TensionConfig defaults = load_tension_config(plain);
     CHECK(defaults.spec.grip_depth_fraction == TensionTestSpec{}.grip_depth_fraction);
     CHECK(defaults.auto_peak_strain == TensionConfig{}.auto_peak_strain);
+    CHECK(defaults.auto_transits == 100.0);
     CHECK(defaults.spec.test.loading.max_strain == 0.02);
 
     const CubeConfig with = load_cube_config(write_file(dir.path / "with.toml", kHead +
-                                                   "[tension]\ngrip_depth_fraction = 0.05\nauto_peak_strain = 5e-4\n"));
+                                                   "[tension]\ngrip_depth_fraction = 0.05\nauto_peak_strain = 5e-4\nauto_transits = 250\n"));
     const TensionConfig t = load_tension_config(with);
     CHECK(t.spec.grip_depth_fraction == 0.05);
     CHECK(t.auto_peak_strain == 5e-4);
+    CHECK(t.auto_transits == 250.0);
     CHECK(with.test.loading.max_strain == 0.02);  // the compression reader accepts (and ignores) [tension]
 
-    SECTION("the auto strain rate: compression's rule at the expected tensile peak strain") {
+    SECTION("the auto strain rate: compression's rule at the expected tensile peak strain, with its own transits") {
         const Packing k = three_mm_packing();
         CubeConfig automatic = with;
         automatic.auto_strain_rate = true;
         const double rate = tension_strain_rate(automatic, t, k);
-        CHECK(rate == Approx(quasi_static_strain_rate(k, with.material, 5e-4)));
-        CHECK(rate / strain_rate_for(automatic, k) == Approx(5e-4 / 0.003));  // compression expects a peak at 0.003
+        CHECK(rate == Approx(quasi_static_strain_rate(k, with.material, 5e-4, 250.0)));
+        // compression expects a peak at 0.003 after 200 transits; this pull 5e-4 after 250
+        CHECK(rate / strain_rate_for(automatic, k) == Approx(5e-4 / 0.003 * 200.0 / 250.0));
+        TensionConfig fewer = t;
+        fewer.auto_transits = 125.0;  // half the transits: twice the rate
+        CHECK(tension_strain_rate(automatic, fewer, k) == Approx(2.0 * rate));
         CHECK(tension_strain_rate(with, t, k) == with.test.loading.strain_rate);
     }
     SECTION("without auto_peak_strain the expected tensile peak strain comes from the material") {
@@ -110,9 +116,11 @@ TEST_CASE("[tension] is optional, read with the cube config, and takes the test'
         automatic.material.bond.effective_modulus = 8.0e9;
         const double expected = 0.5 * 16.0e6 / 8.0e9;  // 0.5 σ̄_c/Ē = 1e-3
         CHECK(expected_tensile_peak_strain(automatic.material) == Approx(expected));
-        CHECK(tension_strain_rate(automatic, defaults, k) == Approx(quasi_static_strain_rate(k, automatic.material, expected)));
+        // the default: 100 transits, twice compression's rate for the same expected peak
+        const double rule = quasi_static_strain_rate(k, automatic.material, expected);
+        CHECK(tension_strain_rate(automatic, defaults, k) == Approx(2.0 * rule));
         automatic.material.bond.tensile_strength_mean *= 2.0;  // stronger bonds: a later peak, a faster pull
-        CHECK(tension_strain_rate(automatic, defaults, k) == Approx(2.0 * quasi_static_strain_rate(k, automatic.material, expected)));
+        CHECK(tension_strain_rate(automatic, defaults, k) == Approx(4.0 * rule));
     }
     SECTION("the expected tensile peak strain is the bond law's: flat joints peak later than parallel bonds") {
         MaterialParams m = plain.material;
@@ -141,6 +149,8 @@ TEST_CASE("bad [tension] tables are rejected with file, line, key and rule", "[t
     require_rejected(file, 6, {"key 'tension.grip_depth_fraction' = \"deep\"", "expected a number"});
     write_file(file, kHead + "[tension]\nauto_peak_strain = 0\n");
     require_rejected(file, 6, {"key 'tension.auto_peak_strain' = 0", "violates in (0, 0.01)"});
+    write_file(file, kHead + "[tension]\ngrip_depth_fraction = 0.1\nauto_transits = 5\n");
+    require_rejected(file, 7, {"key 'tension.auto_transits' = 5", "violates in [10, 10000]"});
     write_file(file, "tension = 3\n" + kHead);
     require_rejected(file, 1, {"'tension' must be a table"});
 }
