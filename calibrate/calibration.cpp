@@ -5,28 +5,54 @@
 #include <stdexcept>
 
 #include "calibrate/execution/ledger.hpp"
+#include "calibrate/plan.hpp"
 #include "common/hash.hpp"
 
 namespace gradem::cal {
 namespace {
 
+/// Whether the tension tests at each stage's result wait for its validation, to run in one batch
+/// with it: a worker that the result's few tension tests leave idle runs validation runs. Not
+/// in study mode, whose prediction runs between the fit and the validation.
+bool tension_joins_validation(const CalibrationProblem& problem) {
+    return problem.tension_at_result_only() && problem.validation.enabled() && problem.mode != Mode::study;
+}
+
 /// The solver's path; with a tension target that is reported only, the path runs compression
 /// alone (σt cannot move it) with the result's tension runs held back from the budget, and the
-/// tension tests run once, at the best point (its compression runs come from the ledger).
+/// tension tests run once, at the best point (its compression runs come from the ledger): here,
+/// or with the validation (`tension_later`: the runs stay held back until then).
 SolveResult solve_then_tension(const CalibrationProblem& problem, SolveContext& ctx, Evaluator& evaluator,
-                               const std::vector<double>& start) {
+                               const std::vector<double>& start, bool tension_later) {
     if (!problem.tension_at_result_only()) return solve(ctx, start);
     const int tension_runs = problem.tension_runs_per_test(ctx.sands);
     const int reserved = evaluator.reserve();
     evaluator.set_tension_companion(false);
     evaluator.set_reserve(reserved + tension_runs);
     SolveResult solution = solve(ctx, start);
-    evaluator.set_reserve(reserved);
     evaluator.set_tension_companion(true);
+    if (tension_later && !solution.best.empty()) return solution;
+    evaluator.set_reserve(reserved);
     if (solution.best.empty()) return solution;
     if (ctx.log) ctx.log("tension tests at the result");
     solution.best_eval = evaluator.evaluate(solution.best, ctx.sands, "tension at the result");
     return solution;
+}
+
+/// Once the result's evaluation is complete (its tension tests too): its noise floor and the
+/// parameters' uncertainty.
+void finish_stage(CalibrationStage& stage, const CalibrationProblem& problem, const ParameterSpace& space,
+                  Evaluator& evaluator, const std::function<void(const std::string&)>& log) {
+    if (stage.solution.best.empty()) {
+        stage.uncertainty.note = "not computed: no evaluation";
+        return;
+    }
+    measure_noise(stage.solution.best_eval, stage.noise_floor);
+    SolveContext ctx{problem, space, evaluator, stage.fitted, log};
+    // σt of weight 0 is no residual, so the difference points run compression alone too.
+    evaluator.set_tension_companion(!problem.tension_at_result_only());
+    stage.uncertainty = estimate_uncertainty(ctx, stage.solution);
+    evaluator.set_tension_companion(true);
 }
 
 CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterSpace& space, Evaluator& evaluator,
@@ -37,17 +63,41 @@ CalibrationStage solve_stage(const CalibrationProblem& problem, const ParameterS
     stage.fitted = fitted;
     SolveContext ctx{problem, space, evaluator, fitted, log};
     if (log) log(stage.label + ": solving with " + to_string(problem.solver.method));
-    stage.solution = solve_then_tension(problem, ctx, evaluator, space.start());
-    if (stage.solution.best.empty()) {
-        stage.uncertainty.note = "not computed: no evaluation";
-        return stage;
-    }
-    measure_noise(stage.solution.best_eval, stage.noise_floor);
-    // σt of weight 0 is no residual, so the difference points run compression alone too.
-    evaluator.set_tension_companion(!problem.tension_at_result_only());
-    stage.uncertainty = estimate_uncertainty(ctx, stage.solution);
-    evaluator.set_tension_companion(true);
+    const bool tension_later = tension_joins_validation(problem);
+    stage.solution = solve_then_tension(problem, ctx, evaluator, space.start(), tension_later);
+    if (!tension_later || stage.solution.best.empty()) finish_stage(stage, problem, space, evaluator, log);
     return stage;
+}
+
+/// The stage's validation, its longest runs first; when its tension tests at the result waited
+/// for it (tension_joins_validation), they join its batch, and the stage is finished once they
+/// are in.
+void validate_stage(CalibrationStage& st, const CalibrationProblem& problem, const ParameterSpace& space,
+                    const ValidatedModel& sets, RunExecutor& executor, Ledger& ledger, Evaluator& evaluator,
+                    const std::function<void(const std::string&)>& log) {
+    const bool with_tension = tension_joins_validation(problem) && !st.solution.best.empty();
+    PointValidation validation(problem, sets, executor, ledger);
+    std::vector<QueuedRuns> batch{validation.queue(st.result(), st.sands())};
+    if (with_tension) {
+        evaluator.set_reserve(evaluator.reserve() - problem.tension_runs_per_test(st.fitted));
+        if (log) log("tension tests at the result, with the validation");
+        batch.push_back({&evaluator, evaluator.queue({st.solution.best}, st.fitted, "tension at the result"), 0, {}});
+    }
+    // The runs' expected times, to start the longest first: a sand's mean fitted run so far ×
+    // the set's grains × steps, a tension test about half a compression test (its automatic rate
+    // puts 100 wave transits before its peak, compression's 200).
+    constexpr double kTensionRunShare = 0.5;
+    const double validation_weight = run_weight_at_edge(problem, problem.validation.edge);
+    for (QueuedRuns& runs : batch)
+        for (const RunRequest& r : runs.requests)
+            runs.expected_seconds.push_back(evaluator.sand_mean_run_seconds(r.sand) *
+                                            (runs.evaluator == &evaluator ? 1.0 : validation_weight) *
+                                            (r.test == CubeTest::tension ? kTensionRunShare : 1.0));
+    run_together(executor, batch, problem.timeout_s);
+    st.validation = validation.collect(log);
+    if (!with_tension) return;
+    st.solution.best_eval = evaluator.collect().front();
+    finish_stage(st, problem, space, evaluator, log);
 }
 
 }  // namespace
@@ -169,7 +219,7 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
                 result.scale_up_runs += st.scale_up.runs;
             }
             if (problem.validation.enabled()) {
-                st.validation = validate_point(problem, *sets, executor, ledger, st.result(), st.sands(), log);
+                validate_stage(st, problem, space, *sets, executor, ledger, evaluator, log);
                 result.validation_runs += st.validation.runs;
             }
         }

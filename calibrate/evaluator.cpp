@@ -1,5 +1,6 @@
 #include "calibrate/evaluator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -114,16 +115,6 @@ std::optional<RunOutcome> Evaluator::served_outcome(const std::string& key) cons
     return found;
 }
 
-struct Evaluator::Job {
-    std::size_t point, sand;
-    std::uint64_t seed;
-    CubeTest test;
-    exp::MaterialParams material;
-    std::string key;
-    RunOutcome outcome;
-    bool done = false;
-};
-
 std::vector<Evaluator::Job> Evaluator::jobs_of(const std::vector<std::vector<double>>& points,
                                                const std::vector<std::size_t>& sands) const {
     std::vector<Job> jobs;
@@ -153,35 +144,58 @@ std::vector<std::size_t> Evaluator::serve_from_ledger(std::vector<Job>& jobs) {
     return queue;
 }
 
-/// The queued jobs on the executor, each recorded as soon as it ends (the executor calls back
-/// one run at a time); then the duplicates of a queued run inside this batch.
-void Evaluator::run_queued(std::vector<Job>& jobs, const std::vector<std::size_t>& queue,
-                           const std::vector<std::vector<double>>& points) {
-    const int evaluations = static_cast<int>(history_.size() + points.size());
+std::vector<RunRequest> Evaluator::queue(const std::vector<std::vector<double>>& points,
+                                         const std::vector<std::size_t>& sands, const std::string& label) {
+    if (pending_) throw std::logic_error("Evaluator::queue: the last queue was not collected");
+    const int needed = runs_needed(points, sands);
+    if (needed > runs_remaining())
+        throw BudgetExhausted("budget: " + std::to_string(needed) + " more runs needed, " + std::to_string(runs_remaining()) +
+                              " of solver.max_runs = " + std::to_string(problem_.solver.max_runs) + " left");
+    Pending p{points, sands, label, jobs_of(points, sands), {}};
+    p.queue = serve_from_ledger(p.jobs);
     std::vector<RunRequest> requests;
-    for (std::size_t j : queue) requests.push_back({jobs[j].sand, jobs[j].seed, jobs[j].material, jobs[j].test});
-    executor_.run(requests, problem_.timeout_s, [&](std::size_t k, const RunOutcome& outcome, const RunPlace& place) {
-        Job& job = jobs[queue[k]];
-        job.outcome = outcome;
-        ledger_.record(job.key, problem_.sands[job.sand], job.seed, parameters_json(points[job.point]), material_key(job.material),
-                       job.outcome, place);
-        job.done = true;
-        used_.insert(job.key);
-        ++executed_;
-        if (!job.outcome.ok()) ++failed_;
-        run_seconds_ += job.outcome.wall_seconds;
-        if (sand_runs_.size() <= job.sand) {
-            sand_runs_.resize(job.sand + 1, 0);
-            sand_run_seconds_.resize(job.sand + 1, 0.0);
-        }
-        sand_run_seconds_[job.sand] += job.outcome.wall_seconds;
-        ++sand_runs_[job.sand];
-        report(evaluations);
-    });
-    for (Job& job : jobs)
+    for (std::size_t j : p.queue) requests.push_back({p.jobs[j].sand, p.jobs[j].seed, p.jobs[j].material, p.jobs[j].test});
+    pending_ = std::move(p);
+    return requests;
+}
+
+/// The k-th queued run ended: its outcome into its job and the ledger at once (the executor
+/// calls back one run at a time), and the progress line.
+void Evaluator::record(std::size_t k, const RunOutcome& outcome, const RunPlace& place) {
+    Pending& p = *pending_;
+    Job& job = p.jobs[p.queue[k]];
+    job.outcome = outcome;
+    ledger_.record(job.key, problem_.sands[job.sand], job.seed, parameters_json(p.points[job.point]), material_key(job.material),
+                   job.outcome, place);
+    job.done = true;
+    used_.insert(job.key);
+    ++executed_;
+    if (!job.outcome.ok()) ++failed_;
+    run_seconds_ += job.outcome.wall_seconds;
+    if (sand_runs_.size() <= job.sand) {
+        sand_runs_.resize(job.sand + 1, 0);
+        sand_run_seconds_.resize(job.sand + 1, 0.0);
+    }
+    sand_run_seconds_[job.sand] += job.outcome.wall_seconds;
+    ++sand_runs_[job.sand];
+    report(static_cast<int>(history_.size() + p.points.size()));
+}
+
+/// The duplicates of a queued run inside the batch take its outcome; then each point's evaluation.
+std::vector<Evaluation> Evaluator::collect() {
+    Pending p = std::move(*pending_);
+    pending_.reset();
+    for (Job& job : p.jobs)
         if (!job.done)
-            for (const Job& other : jobs)
+            for (const Job& other : p.jobs)
                 if (other.done && other.key == job.key) job.outcome = other.outcome, job.done = true;
+    std::vector<Evaluation> out;
+    for (std::size_t i = 0; i < p.points.size(); ++i) {
+        history_.push_back(evaluation_of(p.jobs, i, p.points[i], p.sands, p.label));
+        out.push_back(history_.back());
+    }
+    if (p.queue.empty()) report(static_cast<int>(history_.size()));  // served from the ledger: no line yet
+    return out;
 }
 
 /// One point's evaluation: per-sand means over seeds; it fails if any of its runs failed.
@@ -210,20 +224,39 @@ Evaluation Evaluator::evaluation_of(const std::vector<Job>& jobs, std::size_t po
 
 std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double>>& points,
                                             const std::vector<std::size_t>& sands, const std::string& label) {
-    const int needed = runs_needed(points, sands);
-    if (needed > runs_remaining())
-        throw BudgetExhausted("budget: " + std::to_string(needed) + " more runs needed, " + std::to_string(runs_remaining()) +
-                              " of solver.max_runs = " + std::to_string(problem_.solver.max_runs) + " left");
-    std::vector<Job> jobs = jobs_of(points, sands);
-    const std::vector<std::size_t> queue = serve_from_ledger(jobs);
-    run_queued(jobs, queue, points);
-    std::vector<Evaluation> out;
-    for (std::size_t p = 0; p < points.size(); ++p) {
-        history_.push_back(evaluation_of(jobs, p, points[p], sands, label));
-        out.push_back(history_.back());
+    const std::vector<RunRequest> requests = queue(points, sands, label);
+    try {
+        executor_.run(requests, problem_.timeout_s,
+                      [&](std::size_t k, const RunOutcome& outcome, const RunPlace& place) { record(k, outcome, place); });
+    } catch (...) {
+        pending_.reset();  // the next evaluation starts afresh (the runs recorded stay in the ledger)
+        throw;
     }
-    if (queue.empty()) report(static_cast<int>(history_.size()));  // served from the ledger: no line yet
-    return out;
+    return collect();
+}
+
+void run_together(RunExecutor& executor, const std::vector<QueuedRuns>& batches, double timeout_s) {
+    struct Owned {
+        std::size_t batch, index;
+        double expected;
+    };
+    std::vector<Owned> order;
+    for (std::size_t b = 0; b < batches.size(); ++b)
+        for (std::size_t k = 0; k < batches[b].requests.size(); ++k)
+            order.push_back({b, k, k < batches[b].expected_seconds.size() ? batches[b].expected_seconds[k] : 0.0});
+    std::stable_sort(order.begin(), order.end(), [](const Owned& x, const Owned& y) { return x.expected > y.expected; });
+    std::vector<RunRequest> all;
+    for (const Owned& o : order) {
+        all.push_back(batches[o.batch].requests[o.index]);
+        all.back().sand += batches[o.batch].sand_offset;
+    }
+    executor.run(all, timeout_s, [&](std::size_t k, const RunOutcome& outcome, const RunPlace& place) {
+        batches[order[k].batch].evaluator->record(order[k].index, outcome, place);
+    });
+}
+
+double Evaluator::sand_mean_run_seconds(std::size_t sand) const {
+    return sand < sand_runs_.size() && sand_runs_[sand] > 0 ? sand_run_seconds_[sand] / sand_runs_[sand] : 0.0;
 }
 
 void Evaluator::report(int evaluations) {
@@ -235,8 +268,7 @@ void Evaluator::report(int evaluations) {
     p.evaluations = evaluations;
     p.elapsed_s = seconds();
     p.mean_run_s = executed_ ? run_seconds_ / executed_ : 0.0;
-    for (std::size_t s = 0; s < sand_runs_.size(); ++s)
-        p.sand_mean_run_s.push_back(sand_runs_[s] ? sand_run_seconds_[s] / sand_runs_[s] : 0.0);
+    for (std::size_t s = 0; s < sand_runs_.size(); ++s) p.sand_mean_run_s.push_back(sand_mean_run_seconds(s));
     p.best_objective = best_objective_;
     p.workers = executor_.slots();
     progress_(p);

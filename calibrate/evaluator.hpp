@@ -6,6 +6,7 @@
 // A problem that fits the direct-tension strength adds, per compression run, the tension test of
 // the same packing and material (its own ledger key): both go to the executor in one batch.
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -89,6 +90,15 @@ public:
         return evaluate(std::vector<std::vector<double>>{point}, sands, label).front();
     }
 
+    /// evaluate() in three steps, so that the runs of several evaluators share one executor
+    /// batch (run_together): queue() checks the budget (BudgetExhausted before anything runs),
+    /// serves what the ledger has and returns the runs left to make, in order; record() takes
+    /// the k-th's outcome when it ends; collect() makes the evaluations. One queue at a time.
+    std::vector<RunRequest> queue(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands,
+                                  const std::string& label);
+    void record(std::size_t k, const RunOutcome& outcome, const RunPlace& place);
+    std::vector<Evaluation> collect();
+
     /// Distinct runs that evaluating `points` would add to the budget.
     [[nodiscard]] int runs_needed(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands) const;
     [[nodiscard]] int runs_used() const { return static_cast<int>(used_.size()); }
@@ -104,6 +114,8 @@ public:
     [[nodiscard]] int runs_failed() const { return failed_; }
     [[nodiscard]] const std::vector<Evaluation>& history() const { return history_; }
     void note_best(double objective) { best_objective_ = objective; }
+    /// The mean wall time of the runs of problem sand `sand` made here so far [s] (0: none yet).
+    [[nodiscard]] double sand_mean_run_seconds(std::size_t sand) const;
     [[nodiscard]] double seconds() const;
 
 private:
@@ -119,10 +131,27 @@ private:
     SandOutcome summarise(std::size_t sand, const std::vector<RunOutcome>& runs, const std::vector<RunOutcome>& tension_runs) const;
     void report(int evaluations);
     // The steps of evaluate().
-    struct Job;  ///< one run of one point: (point, sand, seed, test), its key and outcome
+    /// One run of one point: (point, sand, seed, test), its key and outcome.
+    struct Job {
+        std::size_t point, sand;
+        std::uint64_t seed;
+        CubeTest test;
+        exp::MaterialParams material;
+        std::string key;
+        RunOutcome outcome;
+        bool done = false;
+    };
+    /// A queue()'s evaluation until collect(): its jobs, and the ones the executor runs (each
+    /// distinct key once, in the order of the requests).
+    struct Pending {
+        std::vector<std::vector<double>> points;
+        std::vector<std::size_t> sands;
+        std::string label;
+        std::vector<Job> jobs;
+        std::vector<std::size_t> queue;
+    };
     std::vector<Job> jobs_of(const std::vector<std::vector<double>>& points, const std::vector<std::size_t>& sands) const;
     std::vector<std::size_t> serve_from_ledger(std::vector<Job>& jobs);
-    void run_queued(std::vector<Job>& jobs, const std::vector<std::size_t>& queue, const std::vector<std::vector<double>>& points);
     Evaluation evaluation_of(const std::vector<Job>& jobs, std::size_t point, const std::vector<double>& values,
                              const std::vector<std::size_t>& sands, const std::string& label);
 
@@ -141,7 +170,25 @@ private:
     std::vector<double> sand_run_seconds_;  ///< per problem sand: Σ wall seconds of its runs here
     std::vector<int> sand_runs_;            ///< per problem sand: its runs here
     std::vector<Evaluation> history_;
+    std::optional<Pending> pending_;  ///< between queue() and collect()
     std::chrono::steady_clock::time_point start_;
 };
+
+/// The runs an evaluator has queued (Evaluator::queue), and where its specimens sit in the
+/// executor's model: its requests' sands are shifted by `sand_offset` (a ValidatedModel's set).
+struct QueuedRuns {
+    Evaluator* evaluator = nullptr;
+    std::vector<RunRequest> requests;
+    std::size_t sand_offset = 0;
+    /// Each request's expected wall time [s], or empty: unknown (run after the others).
+    std::vector<double> expected_seconds;
+};
+
+/// The queued runs of several evaluators as one batch on `executor`, the longest expected first
+/// (the executor starts runs in order: a long run started last keeps the others waiting), else
+/// in the order given; each outcome recorded by the evaluator that queued it; the evaluators then
+/// collect() their evaluations. A worker that would sit idle at the end of one evaluator's
+/// batch runs another's instead.
+void run_together(RunExecutor& executor, const std::vector<QueuedRuns>& batches, double timeout_s);
 
 }  // namespace gradem::cal

@@ -270,6 +270,22 @@ std::string test_cost_assumption(BondModel model) {
     return o.str();
 }
 
+namespace {
+
+/// A set's cube edge over the fitted one (a set's edge 0: the fit's) [-].
+double edge_ratio(const CalibrationProblem& problem, double edge) {
+    const double fitted_edge = problem.base.specimen.genesis.edge;
+    return edge > 0.0 && fitted_edge > 0.0 ? edge / fitted_edge : 1.0;
+}
+
+}  // namespace
+
+double run_weight_at_edge(const CalibrationProblem& problem, double edge) {
+    // (L/L_f)³ the grains; at the automatic rate L/L_f the steps (a fixed number of wave transits).
+    const double ratio = edge_ratio(problem, edge);
+    return std::pow(ratio, 3) * (problem.base.auto_strain_rate ? ratio : 1.0);
+}
+
 ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     CalibrationProblem dry = problem;
     dry.model = RunModel::analytic;
@@ -278,16 +294,11 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     const auto model = make_model(dry);
     const CalibrationResult r = run_calibration(dry, *model);
     ExpectedRuns e{r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
-    // A run on cubes of edge L against one on the fitted edge L_f: (L/L_f)³ the grains, and at
-    // the automatic rate L/L_f the steps (a set's edge 0: the fit's).
-    const double fitted_edge = problem.base.specimen.genesis.edge;
-    const auto edges = [&](double edge) { return edge > 0.0 && fitted_edge > 0.0 ? edge / fitted_edge : 1.0; };
-    const auto steps = [&](double ratio) { return problem.base.auto_strain_rate ? ratio : 1.0; };
-    const double validation = edges(problem.validation.edge), scale_up = edges(problem.scale_up.edge);
+    const double validation = edge_ratio(problem, problem.validation.edge);
     e.validation_grains_ratio = std::pow(validation, 3);
-    e.validation_steps_ratio = steps(validation);
-    e.validation_run_weight = e.validation_grains_ratio * e.validation_steps_ratio;
-    e.scale_up_run_weight = std::pow(scale_up, 3) * steps(scale_up);
+    e.validation_steps_ratio = problem.base.auto_strain_rate ? validation : 1.0;
+    e.validation_run_weight = run_weight_at_edge(problem, problem.validation.edge);
+    e.scale_up_run_weight = run_weight_at_edge(problem, problem.scale_up.edge);
     const bool tension = problem.tension.fitted();
     const double per_test = problem.runs_per_test() + (tension ? problem.tension_runs_per_test() : 0);
     for (std::size_t s = 0; s < problem.sands.size(); ++s) {

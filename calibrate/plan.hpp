@@ -101,6 +101,11 @@ struct ExpectedRuns {
 };
 ExpectedRuns expected_runs(const CalibrationProblem& problem);
 
+/// A run on cubes of edge `edge` [m] over a run of the same sand on the problem's fitted cubes:
+/// (edge ratio)³ the grains, × the edge ratio the steps at the automatic rate (a fixed number of
+/// wave transits), else × 1 [-]; edge 0: the fitted edge (1).
+double run_weight_at_edge(const CalibrationProblem& problem, double edge);
+
 /// The progress line's ETA [s]: the runs still expected on the solver's path (`upper`: the
 /// budget's remaining runs instead), then the scale-up and validation runs at their weights,
 /// each sand's share at that sand's mean run time so far (the mean of every run for a sand not

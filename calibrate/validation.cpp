@@ -84,17 +84,38 @@ Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedMode
 StageValidation validate_point(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor,
                                Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
                                const std::function<void(const std::string&)>& log) {
+    PointValidation validation(problem, model, executor, ledger);
+    const QueuedRuns runs = validation.queue(point, sands);
+    run_together(executor, {runs}, problem.timeout_s);
+    return validation.collect(log);
+}
+
+PointValidation::PointValidation(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor,
+                                 Ledger& ledger)
+    : on_set_(validation_problem(problem)), space_(on_set_.parameters, on_set_.base.material),
+      shifted_(executor, model.offset(SpecimenSet::validation)),
+      evaluator_(on_set_, space_, shifted_, ledger, model.model(SpecimenSet::validation)),
+      offset_(model.offset(SpecimenSet::validation)) {}
+
+QueuedRuns PointValidation::queue(const std::vector<double>& point, const std::vector<std::size_t>& sands) {
+    if (point.empty()) return {};
+    queued_ = true;
+    return {&evaluator_, evaluator_.queue({point}, sands, "validation"), offset_, {}};
+}
+
+StageValidation PointValidation::collect(const std::function<void(const std::string&)>& log) {
     StageValidation v;
-    if (point.empty()) {
+    if (!queued_) {
         v.note = "not run: the fit has no result";
         return v;
     }
-    const CalibrationProblem vp = validation_problem(problem);
-    v.evaluation = evaluate_on_set(vp, model, SpecimenSet::validation, executor, ledger, point, sands, "validation", v.runs,
-                                   v.from_ledger);
+    queued_ = false;
+    v.evaluation = evaluator_.collect().front();
+    v.runs = evaluator_.runs_used();
+    v.from_ledger = evaluator_.runs_from_ledger();
     if (log)
-        log("validation on " + std::to_string(vp.seeds.size()) + (vp.seeds.size() == 1 ? " unseen seed" : " unseen seeds") +
-            ", edge " + common::format_significant(vp.base.specimen.genesis.edge * 1e3, 4) + " mm: " + std::to_string(v.runs) +
+        log("validation on " + std::to_string(on_set_.seeds.size()) + (on_set_.seeds.size() == 1 ? " unseen seed" : " unseen seeds") +
+            ", edge " + common::format_significant(on_set_.base.specimen.genesis.edge * 1e3, 4) + " mm: " + std::to_string(v.runs) +
             " runs (" + std::to_string(v.from_ledger) + " from the ledger)" +
             (v.evaluation.failed ? ", failed: " + v.evaluation.failure : ""));
     return v;

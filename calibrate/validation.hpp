@@ -18,8 +18,10 @@
 #include "calibrate/cube_model.hpp"
 #include "calibrate/evaluator.hpp"
 #include "calibrate/execution/ledger.hpp"
+#include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
 #include "calibrate/execution/run_executor.hpp"
+#include "calibrate/study/study_models.hpp"
 
 namespace gradem::cal {
 
@@ -82,5 +84,28 @@ struct StageValidation {
 StageValidation validate_point(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor,
                                Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
                                const std::function<void(const std::string&)>& log);
+
+/// validate_point in two halves around a batch it may share with other runs (run_together):
+/// queue() its runs, run them, collect() the StageValidation.
+class PointValidation {
+public:
+    /// The validation of `problem` on `model`'s validation set; `executor` runs `model`'s requests.
+    PointValidation(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor, Ledger& ledger);
+    PointValidation(const PointValidation&) = delete;
+    PointValidation& operator=(const PointValidation&) = delete;
+    /// The runs of `point` on the validation specimens of `sands` (none for an empty point: the
+    /// fit has no result), their sands placed in `model`'s validation set.
+    QueuedRuns queue(const std::vector<double>& point, const std::vector<std::size_t>& sands);
+    /// The validation once the queued runs have run; `log` gets one milestone line.
+    StageValidation collect(const std::function<void(const std::string&)>& log);
+
+private:
+    CalibrationProblem on_set_;  ///< the problem on the validation specimens
+    ParameterSpace space_;
+    CaseExecutor shifted_;       ///< `executor` with the set's sands (the evaluator's; run_together shifts itself)
+    Evaluator evaluator_;
+    std::size_t offset_;
+    bool queued_ = false;
+};
 
 }  // namespace gradem::cal

@@ -199,6 +199,155 @@ TEST_CASE("validation tension seeds: the direct-tension tests run on those valid
     CHECK_THAT(report::summary_markdown(some, r_some), Catch::Contains("packing seeds 11, 12, 13 (direct tension on 12)"));
 }
 
+namespace {
+
+/// The thread executor, keeping every batch it is handed.
+class RecordingExecutor final : public cal::RunExecutor {
+public:
+    RecordingExecutor(cal::CubeModel& model, int workers) : threads_(model, workers) {}
+    void prepare(const cal::PackingSeeds& seeds, const Log& log) override { threads_.prepare(seeds, log); }
+    void run(const std::vector<cal::RunRequest>& requests, double timeout_s, const RunDone& done) override {
+        batches.push_back(requests);
+        threads_.run(requests, timeout_s, done);
+    }
+    [[nodiscard]] int slots() const override { return threads_.slots(); }
+    [[nodiscard]] std::string describe() const override { return threads_.describe(); }
+    std::vector<std::vector<cal::RunRequest>> batches;
+
+private:
+    cal::ThreadExecutor threads_;
+};
+
+}  // namespace
+
+// With the tension target reported only, the tension tests at the result wait for the
+// validation and run in its batch (a worker the few tension tests would leave idle runs
+// validation runs meanwhile). Oracle: the same problem without its validation table runs those
+// tests alone, as the last batch of its fit; the merged job's fit, its result's evaluation
+// (σt included), noise floor and uncertainty are the same, bit for bit, and its validation is
+// that of a validation run alone at that result.
+TEST_CASE("tension tests at the result join the validation's batch: the same results, one batch fewer",
+          "[calibrate][validation][tension]") {
+    TempDir with_dir("cal-validation-joined"), alone_dir("cal-validation-joined-alone");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem joined =
+        cal::load_calibration_problem(problem_with_tension(with_dir.path, *plain, "[validation]\nseeds = [11, 12]\n"));
+    const cal::CalibrationProblem alone = cal::load_calibration_problem(problem_with_tension(alone_dir.path, *plain, ""));
+    REQUIRE(joined.tension_at_result_only());
+    auto joined_model = cal::make_model(joined);
+    auto alone_model = cal::make_model(alone);
+    RecordingExecutor joined_runs(*joined_model, 2), alone_runs(*alone_model, 2);
+    const cal::CalibrationResult j = cal::run_calibration(joined, *joined_model, joined_runs);
+    const cal::CalibrationResult a = cal::run_calibration(alone, *alone_model, alone_runs);
+
+    // The fit and the result's evaluation, tension tests included.
+    const cal::CalibrationStage &sj = j.stages.at(0), &sa = a.stages.at(0);
+    REQUIRE(sa.solution.best_eval.label == "tension at the result");
+    CHECK(sj.solution.best == sa.solution.best);
+    CHECK(sj.solution.best_eval.label == "tension at the result");
+    REQUIRE(sj.solution.best_eval.tension_runs.size() == sa.solution.best_eval.tension_runs.size());
+    for (std::size_t s = 0; s < kSands.size(); ++s)
+        for (cal::Quantity q : {cal::Quantity::modulus, cal::Quantity::peak, cal::Quantity::strain, cal::Quantity::tension})
+            CHECK(sj.solution.best_eval.sands.at(s).value(q) == sa.solution.best_eval.sands.at(s).value(q));
+    for (int q = 0; q < cal::kQuantityCount; ++q)
+        CHECK((sj.noise_floor[q] == sa.noise_floor[q] || (std::isnan(sj.noise_floor[q]) && std::isnan(sa.noise_floor[q]))));
+    CHECK(sj.uncertainty.computed == sa.uncertainty.computed);
+    CHECK(sj.uncertainty.std_error_natural == sa.uncertainty.std_error_natural);
+    CHECK(j.runs_used == a.runs_used);
+    REQUIRE(j.history.size() == a.history.size());
+    for (std::size_t k = 0; k < a.history.size(); ++k) CHECK(j.history[k].label == a.history[k].label);
+
+    // One batch fewer: the one with the validation's runs (sands of its set, placed after the
+    // fitted ones) also holds the result's tension tests (fitted sands), which the job without
+    // a validation runs as a batch of their own.
+    REQUIRE(joined_runs.batches.size() == alone_runs.batches.size());
+    auto is_tension_at_result = [&](const cal::RunRequest& r) { return r.sand < kSands.size() && r.test == cal::CubeTest::tension; };
+    std::size_t tension_at_result = 0;
+    for (const auto& batch : alone_runs.batches)
+        if (std::all_of(batch.begin(), batch.end(), is_tension_at_result)) tension_at_result = batch.size();
+    REQUIRE(tension_at_result == kSands.size() * joined.seeds.size());
+    std::size_t with_validation = 0;
+    for (const auto& batch : joined_runs.batches) {
+        if (std::none_of(batch.begin(), batch.end(), [&](const cal::RunRequest& r) { return r.sand >= kSands.size(); })) continue;
+        ++with_validation;
+        REQUIRE(batch.size() == static_cast<std::size_t>(j.validation_runs) + tension_at_result);
+        CHECK(std::count_if(batch.begin(), batch.end(), is_tension_at_result) == static_cast<std::ptrdiff_t>(tension_at_result));
+    }
+    CHECK(with_validation == 1);
+
+    // The validation is that of the result run on its own.
+    TempDir again_dir("cal-validation-joined-again");
+    cal::CalibrationProblem fresh = joined;
+    fresh.ledger = again_dir.path / "ledger.sqlite";
+    auto fresh_model = cal::make_model(fresh);
+    cal::ThreadExecutor threads(*fresh_model, 2);
+    threads.prepare(fresh.packing_seeds(), {});
+    cal::Ledger ledger(fresh.ledger, "validation alone", "validation alone\n");
+    const cal::StageValidation v = cal::validate_point(fresh, dynamic_cast<const cal::ValidatedModel&>(*fresh_model), threads,
+                                                       ledger, sj.solution.best, sj.sands(), {});
+    REQUIRE(v.evaluation.sands.size() == kSands.size());
+    for (std::size_t s = 0; s < kSands.size(); ++s) {
+        CHECK(v.evaluation.sands.at(s).value(cal::Quantity::modulus) == sj.validation.evaluation.sands.at(s).value(cal::Quantity::modulus));
+        CHECK(v.evaluation.sands.at(s).value(cal::Quantity::tension) == sj.validation.evaluation.sands.at(s).value(cal::Quantity::tension));
+    }
+    CHECK(v.runs == j.validation_runs);
+}
+
+// run_together hands the executor the runs of several evaluators as one batch, the longest
+// expected first (a long run started last keeps the other worker waiting). Oracle: the order is
+// the stable sort of the requests by their expected seconds, and each evaluator's evaluation is
+// the one it makes of the same point alone.
+TEST_CASE("run_together: the longest expected runs first, each outcome to the evaluator that queued it",
+          "[calibrate][validation]") {
+    TempDir dir("cal-run-together");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem problem = cal::load_calibration_problem(problem_with_tension(dir.path, *plain, ""));
+    const cal::ParameterSpace space(problem.parameters, problem.base.material);
+    auto model = cal::make_model(problem);
+    RecordingExecutor runs(*model, 2);
+    runs.prepare(problem.packing_seeds(), {});
+    cal::Ledger ledger(dir.path / "together.sqlite", "together", "together\n");
+    cal::Evaluator first(problem, space, runs, ledger, *model), second(problem, space, runs, ledger, *model);
+    const std::vector<double> p1 = space.start();
+    std::vector<double> p2 = p1;
+    p2[0] *= 1.1;
+    cal::QueuedRuns a{&first, first.queue({p1}, {0}, "first"), 0, {}};
+    cal::QueuedRuns b{&second, second.queue({p2}, {1}, "second"), 0, {}};
+    REQUIRE(a.requests.size() >= 3);
+    for (std::size_t k = 0; k < a.requests.size(); ++k) a.expected_seconds.push_back(static_cast<double>(k % 3));  // 0 1 2 0 1 2 ...
+    b.expected_seconds.assign(b.requests.size(), 1.5);
+    cal::run_together(runs, {a, b}, problem.timeout_s);
+
+    // The order: a's 2 s runs, b's 1.5 s, a's 1 s, a's 0 s, each group in queue order.
+    std::vector<cal::RunRequest> expected;
+    for (double group : {2.0, 1.5, 1.0, 0.0})
+        for (const cal::QueuedRuns* q : {&a, &b})
+            for (std::size_t k = 0; k < q->requests.size(); ++k)
+                if (q->expected_seconds[k] == group) expected.push_back(q->requests[k]);
+    REQUIRE(runs.batches.size() == 1);
+    const std::vector<cal::RunRequest>& sent = runs.batches.front();
+    REQUIRE(sent.size() == expected.size());
+    for (std::size_t k = 0; k < sent.size(); ++k) {
+        CHECK(sent[k].sand == expected[k].sand);
+        CHECK(sent[k].seed == expected[k].seed);
+        CHECK(sent[k].test == expected[k].test);
+    }
+
+    // Each evaluator got its own outcomes: the evaluations of its point made alone.
+    const cal::Evaluation ea = first.collect().front(), eb = second.collect().front();
+    cal::ThreadExecutor threads(*model, 1);
+    cal::Ledger alone_ledger(dir.path / "alone.sqlite", "alone", "alone\n");
+    cal::Evaluator alone(problem, space, threads, alone_ledger, *model);
+    const cal::Evaluation ra = alone.evaluate(p1, {0}, "first"), rb = alone.evaluate(p2, {1}, "second");
+    for (cal::Quantity q : {cal::Quantity::modulus, cal::Quantity::peak, cal::Quantity::strain}) {
+        CHECK(ea.sands.at(0).value(q) == ra.sands.at(0).value(q));
+        CHECK(eb.sands.at(0).value(q) == rb.sands.at(0).value(q));
+    }
+    CHECK(ea.runs.size() + ea.tension_runs.size() == a.requests.size());
+    CHECK(first.runs_used() == static_cast<int>(a.requests.size()));
+    CHECK(second.runs_used() == static_cast<int>(b.requests.size()));
+}
+
 TEST_CASE("bad [validation] tables are refused naming the key, line and rule", "[calibrate][validation]") {
     TempDir dir("cal-validation-bad");
     auto model = cal::make_analytic_model(2, 0.001);
