@@ -150,9 +150,10 @@ TEST_CASE("a strain-at-peak miss on the validation specimens is explained by the
 namespace {
 
 /// A problem of both sands with an assumed σc/σt target (reported, not fitted) and `validation`.
-fs::path problem_with_tension(const fs::path& dir, const cal::CubeModel& model, const std::string& validation) {
+fs::path problem_with_tension(const fs::path& dir, const cal::CubeModel& model, const std::string& validation,
+                              const std::string& mode = "joint") {
     write_lab(dir, model);
-    return test::write_problem(dir, "model = \"analytic\"\nseeds = [1, 2, 3]\n",
+    return test::write_problem(dir, "model = \"analytic\"\nmode = \"" + mode + "\"\nseeds = [1, 2, 3]\n",
                                "strain_weight = 1.0\ntension = \"assumed_ratio\"\ntension_ratio = 10.0\ntension_ratio_low = 8.0\n"
                                "tension_ratio_high = 12.0\ntension_basis = \"test\"\ntension_weight = 0.0\n"
                                "[solver]\nmethod = \"scaling\"\nmax_runs = 300\ntolerance = 0.002\n" + validation +
@@ -291,6 +292,32 @@ TEST_CASE("tension tests at the result join the validation's batch: the same res
         CHECK(v.evaluation.sands.at(s).value(cal::Quantity::tension) == sj.validation.evaluation.sands.at(s).value(cal::Quantity::tension));
     }
     CHECK(v.runs == j.validation_runs);
+}
+
+// Per sand, each stage's tension tests wait for its own validation while the next stage solves:
+// their runs stay held back from the budget until then. Oracle: the same stages and budget as
+// the problem without a validation, each stage's σt the same.
+TEST_CASE("per sand: each stage's tension tests at the result run with its validation", "[calibrate][validation][tension]") {
+    TempDir with_dir("cal-validation-per-sand"), alone_dir("cal-validation-per-sand-alone");
+    auto plain = cal::make_analytic_model(2, 0.001);
+    const cal::CalibrationProblem joined = cal::load_calibration_problem(
+        problem_with_tension(with_dir.path, *plain, "[validation]\nseeds = [11, 12]\n", "per_sand"));
+    const cal::CalibrationProblem alone = cal::load_calibration_problem(problem_with_tension(alone_dir.path, *plain, "", "per_sand"));
+    const cal::CalibrationResult j = cal::run_calibration(joined, *cal::make_model(joined));
+    const cal::CalibrationResult a = cal::run_calibration(alone, *cal::make_model(alone));
+    REQUIRE(j.stages.size() == 2);
+    REQUIRE(a.stages.size() == 2);
+    CHECK(j.runs_used == a.runs_used);
+    for (std::size_t k = 0; k < 2; ++k) {
+        const cal::CalibrationStage &sj = j.stages[k], &sa = a.stages[k];
+        CHECK(sj.solution.best == sa.solution.best);
+        CHECK(sj.solution.best_eval.label == "tension at the result");
+        REQUIRE(sj.solution.best_eval.sands.size() == 1);
+        CHECK(sj.solution.best_eval.sands[0].tension_ok == static_cast<int>(joined.seeds.size()));
+        CHECK(sj.solution.best_eval.sands[0].value(cal::Quantity::tension) == sa.solution.best_eval.sands[0].value(cal::Quantity::tension));
+        CHECK(sj.uncertainty.std_error_natural == sa.uncertainty.std_error_natural);
+        CHECK(sj.validation.evaluation.sands.size() == 1);
+    }
 }
 
 // run_together hands the executor the runs of several evaluators as one batch, the longest
