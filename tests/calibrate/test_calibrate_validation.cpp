@@ -1,6 +1,7 @@
 // The validation specimens of a calibration ([validation] edge_mm, seeds): the result is run
 // on unseen seeds after the fit, reported first, and a result that does not hold there says so;
-// bad [validation] tables are refused before anything runs.
+// the tension tests at the result share its batch, which starts the longest runs first; bad
+// [validation] tables are refused before anything runs.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
