@@ -293,7 +293,11 @@ ExpectedRuns expected_runs(const CalibrationProblem& problem) {
     dry.workers = 1;
     const auto model = make_model(dry);
     const CalibrationResult r = run_calibration(dry, *model);
-    ExpectedRuns e{r.runs_used, static_cast<int>(r.history.size()), r.validation_runs, r.scale_up_runs};
+    ExpectedRuns e;
+    e.fitted = r.runs_used;
+    e.evaluations = static_cast<int>(r.history.size());
+    e.validation = r.validation_runs;
+    e.scale_up = r.scale_up_runs;
     const double validation = edge_ratio(problem, problem.validation.edge);
     e.validation_grains_ratio = std::pow(validation, 3);
     e.validation_steps_ratio = problem.base.auto_strain_rate ? validation : 1.0;

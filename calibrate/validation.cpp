@@ -69,15 +69,18 @@ RunOutcome ValidatedModel::run(const RunRequest& request, double timeout_s) cons
     throw std::logic_error("ValidatedModel::run: sand " + std::to_string(request.sand) + " is in no specimen set");
 }
 
+SetEvaluator::SetEvaluator(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set,
+                           RunExecutor& executor, Ledger& ledger)
+    : problem(on_set), space(problem.parameters, problem.base.material), offset(model.offset(set)),
+      shifted(executor, offset), evaluator(problem, space, shifted, ledger, model.model(set)) {}
+
 Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set, RunExecutor& executor,
                            Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
                            const std::string& label, int& runs, int& from_ledger) {
-    const ParameterSpace space(on_set.parameters, on_set.base.material);
-    CaseExecutor shifted(executor, model.offset(set));
-    Evaluator evaluator(on_set, space, shifted, ledger, model.model(set));
-    Evaluation e = evaluator.evaluate(point, sands, label);
-    runs = evaluator.runs_used();
-    from_ledger = evaluator.runs_from_ledger();
+    SetEvaluator on(on_set, model, set, executor, ledger);
+    Evaluation e = on.evaluator.evaluate(point, sands, label);
+    runs = on.evaluator.runs_used();
+    from_ledger = on.evaluator.runs_from_ledger();
     return e;
 }
 
@@ -92,15 +95,12 @@ StageValidation validate_point(const CalibrationProblem& problem, const Validate
 
 PointValidation::PointValidation(const CalibrationProblem& problem, const ValidatedModel& model, RunExecutor& executor,
                                  Ledger& ledger)
-    : on_set_(validation_problem(problem)), space_(on_set_.parameters, on_set_.base.material),
-      shifted_(executor, model.offset(SpecimenSet::validation)),
-      evaluator_(on_set_, space_, shifted_, ledger, model.model(SpecimenSet::validation)),
-      offset_(model.offset(SpecimenSet::validation)) {}
+    : set_(validation_problem(problem), model, SpecimenSet::validation, executor, ledger) {}
 
 QueuedRuns PointValidation::queue(const std::vector<double>& point, const std::vector<std::size_t>& sands) {
     if (point.empty()) return {};
     queued_ = true;
-    return {&evaluator_, evaluator_.queue({point}, sands, "validation"), offset_, {}};
+    return {&set_.evaluator, set_.evaluator.queue({point}, sands, "validation"), set_.offset, {}};
 }
 
 StageValidation PointValidation::collect(const std::function<void(const std::string&)>& log) {
@@ -110,12 +110,12 @@ StageValidation PointValidation::collect(const std::function<void(const std::str
         return v;
     }
     queued_ = false;
-    v.evaluation = evaluator_.collect().front();
-    v.runs = evaluator_.runs_used();
-    v.from_ledger = evaluator_.runs_from_ledger();
+    v.evaluation = set_.evaluator.collect().front();
+    v.runs = set_.evaluator.runs_used();
+    v.from_ledger = set_.evaluator.runs_from_ledger();
     if (log)
-        log("validation on " + std::to_string(on_set_.seeds.size()) + (on_set_.seeds.size() == 1 ? " unseen seed" : " unseen seeds") +
-            ", edge " + common::format_significant(on_set_.base.specimen.genesis.edge * 1e3, 4) + " mm: " + std::to_string(v.runs) +
+        log("validation on " + std::to_string(set_.problem.seeds.size()) + (set_.problem.seeds.size() == 1 ? " unseen seed" : " unseen seeds") +
+            ", edge " + common::format_significant(set_.problem.base.specimen.genesis.edge * 1e3, 4) + " mm: " + std::to_string(v.runs) +
             " runs (" + std::to_string(v.from_ledger) + " from the ledger)" +
             (v.evaluation.failed ? ", failed: " + v.evaluation.failure : ""));
     return v;

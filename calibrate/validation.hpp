@@ -65,6 +65,21 @@ private:
     std::vector<Extra> extras_;
 };
 
+/// The evaluator of `on_set` (the problem on set `set`'s specimens) over that set of `model`,
+/// its runs through `executor` (which runs `model`'s requests, so the sands are shifted into the
+/// set), recording into `ledger`. Not copyable: the evaluator refers to the members before it.
+struct SetEvaluator {
+    SetEvaluator(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set, RunExecutor& executor,
+                 Ledger& ledger);
+    SetEvaluator(const SetEvaluator&) = delete;
+    SetEvaluator& operator=(const SetEvaluator&) = delete;
+    CalibrationProblem problem;
+    ParameterSpace space;
+    std::size_t offset;     ///< the composite sand number of the set's first sand
+    CaseExecutor shifted;   ///< `executor` with the set's sands
+    Evaluator evaluator;
+};
+
 /// `point` on set `set` of `model` for `sands` through `executor` (which runs `model`'s
 /// requests), recording into `ledger`, as `on_set` (the problem on that set's specimens) defines
 /// its runs; `runs` and `from_ledger` receive its counts.
@@ -100,11 +115,7 @@ public:
     StageValidation collect(const std::function<void(const std::string&)>& log);
 
 private:
-    CalibrationProblem on_set_;  ///< the problem on the validation specimens
-    ParameterSpace space_;
-    CaseExecutor shifted_;       ///< `executor` with the set's sands (the evaluator's; run_together shifts itself)
-    Evaluator evaluator_;
-    std::size_t offset_;
+    SetEvaluator set_;  ///< the validation set's (run_together shifts the sands itself)
     bool queued_ = false;
 };
 
