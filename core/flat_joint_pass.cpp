@@ -548,8 +548,10 @@ struct FlatJointPass {
     }
 
     /// Prefetches for bond k: particle j of a bond a few bonds ahead (a random access), and that
-    /// joint's own streams: its side state (the lines with the header and the element shears),
-    /// its bond record further on, its constants.
+    /// joint's own streams: its bond record further on, its pair slot, its constants. The side
+    /// state (header and element shears) is one sequential stream, left to the hardware
+    /// prefetcher: prefetching its lines too made a calibrated compression test 2-4 % slower
+    /// (bench/README.md).
     __attribute__((always_inline)) inline void prefetch_ahead(std::int64_t k, std::int64_t end) const {
         if (k + kPrefetchAhead >= end) return;
         const auto ka = static_cast<std::size_t>(k + kPrefetchAhead);
@@ -557,8 +559,6 @@ struct FlatJointPass {
         __builtin_prefetch(&pass.particles.position[jn]);
         __builtin_prefetch(&pass.particles.velocity[jn]);
         __builtin_prefetch(&pass.particles.spin[jn]);
-        const char* side_ahead = reinterpret_cast<const char*>(side_data + ka * stride);
-        for (std::size_t line = 0; line < stride * sizeof(double); line += 64) __builtin_prefetch(side_ahead + line, 1);
         __builtin_prefetch(&pass.bonds[std::min(ka + kPrefetchAhead, pass.bonds.size() - 1)], 1);
         if (const std::int32_t slot = pass.bonds[ka].slot; slot >= 0)  // where its force goes
             __builtin_prefetch(&pass.pair_out[static_cast<std::size_t>(slot)], 1);
