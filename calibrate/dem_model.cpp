@@ -174,6 +174,7 @@ private:
           << "; ramp " << l.ramp_strain << "; stop " << l.stop_fraction << "; max " << l.max_strain << "; record "
           << l.record_interval << "; gauge " << base_.test.gauge_length_fraction << " " << base_.test.slab_fraction << " "
           << base_.test.core_fraction << "; settle " << base_.test.settle_ratio << " " << base_.test.max_settle_steps;
+        if (l.stop_strain_ratio > 0.0) f << "; stop strain " << l.stop_strain_ratio;  // absent when off: earlier keys hold
         return f.str();
     }
 

@@ -15,6 +15,7 @@
 #include "calibrate/calibration.hpp"
 #include "calibrate/parameters.hpp"
 #include "common/clock_text.hpp"
+#include "common/number_format.hpp"
 #include "core/world.hpp"
 #include "experiments/virtual_tests/cube_specimen.hpp"
 #include "experiments/specimen/grain_sampler.hpp"
@@ -120,16 +121,19 @@ double loading_steps(double end_strain, double ramp_strain, double rate, double 
 }
 
 /// The platen strains at which a compression run of this sand is expected to peak and to end
-/// when it stops at `stop_fraction` of its peak (plan.hpp, step 4).
+/// when it stops at `stop` (plan.hpp, step 4): its stress down to stop_fraction of its peak, or,
+/// with a stop_strain_ratio, its strain at most that × the strain at the peak (a ratio of gauge
+/// strains, taken as one of platen strains).
 struct CompressionStrains {
     double peak = 0.0, end = 0.0;
 };
-CompressionStrains compression_strains(const std::optional<PlatenTestCost>& cost, const SandTargets& lab, double stop_fraction) {
+CompressionStrains compression_strains(const std::optional<PlatenTestCost>& cost, const SandTargets& lab, const exp::PlatenTestSpec& stop) {
     const double elastic = lab.peak.mean / lab.modulus.mean;
     const double peak = cost ? cost->compression_peak_over_elastic * elastic : lab.strain.mean;
     const double end = cost ? cost->compression_end_over_elastic * elastic : kEndOverPeakStrain * lab.strain.mean;
-    const double tail = (1.0 - stop_fraction) / (1.0 - PlatenTestCost::kMeasuredStopFraction);
-    return {peak, peak + (end - peak) * tail};
+    const double tail = (1.0 - stop.stop_fraction) / (1.0 - PlatenTestCost::kMeasuredStopFraction);
+    const double stopped = peak + (end - peak) * tail;
+    return {peak, stop.stop_strain_ratio > 0.0 ? std::min(stopped, stop.stop_strain_ratio * peak) : stopped};
 }
 
 /// The runs of each sand on a set, from the stand-in's path: the fitted runs spread over the
@@ -209,7 +213,7 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     const exp::PlatenTestSpec& l = config.test.loading;
     const double rate = config.auto_strain_rate ? exp::quasi_static_strain_rate(*timed, material) : l.strain_rate;
     const std::optional<PlatenTestCost> row = platen_test_cost(problem.bond_model());
-    const CompressionStrains strain = compression_strains(row, problem.targets[s], l.stop_fraction);
+    const CompressionStrains strain = compression_strains(row, problem.targets[s], l);
     const double to_peak = loading_steps(strain.peak, l.ramp_strain, rate, probe.time_step);
     const double loading = loading_steps(strain.end, l.ramp_strain, rate, probe.time_step);
     cost.compression_steps = probe.settle_steps + loading;
@@ -367,6 +371,9 @@ CalibrationPlan plan_calibration(const CalibrationProblem& problem, double probe
       << "); a DEM path may stop earlier or use the whole budget";
     plan.assumptions.push_back(a.str());
     plan.assumptions.push_back(test_cost_assumption(problem.bond_model()) + "; every run costs what the start point costs");
+    if (const double ratio = problem.base.test.loading.stop_strain_ratio; ratio > 0.0)
+        plan.assumptions.push_back("a compression run ends by " + common::format_significant(ratio, 3) +
+                                   " x its expected strain at peak (stop_strain_ratio); a tension run as without it");
     return plan;
 }
 

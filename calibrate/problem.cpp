@@ -95,14 +95,16 @@ void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
         throw InputError(ctx.file, line, "key 'calibration.edge_mm': " + *why);
 }
 
-// [calibration] stop_fraction: where every platen test of the calibration stops after its peak
-// (stress under this × the peak), replacing the base config's test.stop_fraction: the targets
-// are at or before the peak, so a calibration need not follow the softening as far as a study.
-void apply_stop_fraction(Context& ctx, double fraction, exp::CubeConfig& base) {
-    base.test.loading.stop_fraction = fraction;
+// [calibration] stop_fraction and stop_strain_ratio: where every platen test of the calibration
+// stops after its peak (stress under stop_fraction × the peak; platen strain past
+// stop_strain_ratio × the strain at the peak), replacing the base config's test keys of the same
+// names: the targets are at or before the peak, so a calibration need not follow the softening
+// as far as a study.
+void apply_stop_rule(Context& ctx, const std::string& key, double exp::PlatenTestSpec::*field, double value,
+                     exp::CubeConfig& base) {
+    base.test.loading.*field = value;
     if (auto why = base.test.loading.invalid_reason())
-        throw InputError(ctx.file, ctx.keys["calibration.stop_fraction"].line,
-                         "key 'calibration.stop_fraction' = " + show(fraction) + ": " + *why);
+        throw InputError(ctx.file, ctx.keys["calibration." + key].line, "key 'calibration." + key + "' = " + show(value) + ": " + *why);
 }
 
 // [calibration] paste_diameter_mm: one coarse-grained paste size for every run, replacing the
@@ -141,6 +143,8 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     s.real("paste_diameter_mm", paste_diameter, 1e-3);
     double stop_fraction = 0.0;  // [-] 0: the base config's test.stop_fraction
     s.real("stop_fraction", stop_fraction);
+    double stop_strain_ratio = 0.0;  // [-] absent: the base config's test.stop_strain_ratio
+    s.real("stop_strain_ratio", stop_strain_ratio);
     s.finish();
     if (base.empty()) throw InputError(ctx.file, 0, "key 'calibration.base' is required: the cube config (specimen, start material, test)");
     if (!fs::exists(base))
@@ -157,7 +161,10 @@ void read_calibration(Context& ctx, const toml::table& root, CalibrationProblem&
     }
     if (ctx.keys["calibration.edge_mm"].line > 0) apply_edge(ctx, edge, p.base);
     if (ctx.keys["calibration.paste_diameter_mm"].line > 0) apply_paste_diameter(ctx, paste_diameter, p.base);
-    if (ctx.keys["calibration.stop_fraction"].line > 0) apply_stop_fraction(ctx, stop_fraction, p.base);
+    if (ctx.keys["calibration.stop_fraction"].line > 0)
+        apply_stop_rule(ctx, "stop_fraction", &exp::PlatenTestSpec::stop_fraction, stop_fraction, p.base);
+    if (ctx.keys["calibration.stop_strain_ratio"].line > 0)
+        apply_stop_rule(ctx, "stop_strain_ratio", &exp::PlatenTestSpec::stop_strain_ratio, stop_strain_ratio, p.base);
     if (p.sands.empty()) throw InputError(ctx.file, ctx.keys["calibration.sands"].line, "key 'calibration.sands' is empty");
     const std::set<std::string> unique(p.sands.begin(), p.sands.end());
     if (unique.size() != p.sands.size())

@@ -2,9 +2,11 @@
 """What an earlier stop would have cost: for each platen test recorded in calibration ledgers,
 whether its stress, after falling under a fraction f of its running peak, ever rose above that
 peak again (a later, higher peak that a test stopped at f would have missed), and where a test
-stopped at f would have ended against where it did.
+stopped at f would have ended against where it did. With --strain-ratio r, the same for the
+strain stop (test.stop_strain_ratio): whether a curve rose above a running peak only after its
+strain had passed r x that peak's strain, and where the two stops together would have ended it.
 
-    /usr/bin/python3 scripts/post_peak_recovery.py out/calibration-joint/ledger.sqlite [...] [--fraction 0.9]
+    /usr/bin/python3 scripts/post_peak_recovery.py out/calibration-joint/ledger.sqlite [...] [--fraction 0.9] [--strain-ratio 1.5]
 
 A ledger's `runs.curve` holds "platen_strain stress;..." pairs (compression and tension alike,
 stress positive in the test's own sense). The start of a curve, before the stress first reaches
@@ -41,22 +43,44 @@ def recovery(points, fraction):
     return highest
 
 
-def end_ratio(points, fraction):
-    """Platen strain where a test stopped at fraction × its peak would end, over its last strain."""
-    peak = max(range(len(points)), key=lambda i: points[i][1])
-    limit = fraction * points[peak][1]
-    end = next((e for e, s in points[peak:] if s < limit), points[-1][0])
-    return end / points[-1][0]
+def strain_needed(points):
+    """The largest strain ratio a strain stop needs to see every later, higher maximum: over the
+    curve, the strain where it first rose above a running peak over that peak's strain [-] (1:
+    every new maximum came at once)."""
+    top = max(s for _, s in points)
+    running, at, needed = 0.0, 0.0, 1.0
+    for strain, stress in points:
+        if stress > running:
+            if running > top / 3.0 and at > 0.0:
+                needed = max(needed, strain / at)
+            running, at = stress, strain
+    return needed
+
+
+def end_ratio(points, fraction, strain_ratio=None):
+    """Platen strain where a test stopped at fraction × its running peak (and, with a strain
+    ratio, at that × the running peak's strain) would end, over its last strain."""
+    top = max(s for _, s in points)
+    running, at = 0.0, 0.0
+    for strain, stress in points:
+        if stress > running:
+            running, at = stress, strain
+        elif running > top / 3.0 and (stress < fraction * running or (strain_ratio and strain > strain_ratio * at)):
+            return strain / points[-1][0]
+    return 1.0
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("ledgers", nargs="+", help="calibration ledgers (ledger.sqlite)")
     parser.add_argument("--fraction", type=float, default=0.9, help="the stop fraction to check, in (0, 1)")
+    parser.add_argument("--strain-ratio", type=float, default=None, help="the strain stop to check, > 1")
     args = parser.parse_args()
     if not 0.0 < args.fraction < 1.0:
         sys.exit(f"--fraction {args.fraction}: expected a number in (0, 1)")
-    seen, recovered, ratios, highest = set(), [], [], 0.0
+    if args.strain_ratio is not None and not args.strain_ratio > 1.0:
+        sys.exit(f"--strain-ratio {args.strain_ratio}: expected a number > 1")
+    seen, recovered, ratios, highest, needs = set(), [], [], 0.0, []
     for path in args.ledgers:
         try:
             rows = sqlite3.connect(f"file:{path}?mode=ro", uri=True).execute(
@@ -72,15 +96,20 @@ def main():
             highest = max(highest, rise)
             if rise > 1.0:
                 recovered.append(f"{path}: {sand} seed {seed} (run {key}) rose to {rise:.4f} x its earlier peak")
-            ratios.append(end_ratio(points, args.fraction))
+            needs.append(strain_needed(points))
+            if args.strain_ratio and needs[-1] > args.strain_ratio:
+                recovered.append(f"{path}: {sand} seed {seed} (run {key}) rose above a peak at {needs[-1]:.3f} x its strain")
+            ratios.append(end_ratio(points, args.fraction, args.strain_ratio))
     if not ratios:
         sys.exit("no curves in " + ", ".join(args.ledgers))
-    print(f"{len(ratios)} curves; {len(recovered)} rose above their peak after falling under {args.fraction} x it")
+    rule = f"{args.fraction} x the peak" + (f" or {args.strain_ratio} x its strain" if args.strain_ratio else "")
+    print(f"{len(ratios)} curves; {len(recovered)} rose above a peak a stop at {rule} would have stopped at")
     for line in recovered:
         print("  " + line)
     if highest > 0.0:
-        print(f"after falling under it, the highest any curve came back to: {highest:.3f} x its peak")
-    print(f"a stop at {args.fraction} x the peak ends at {statistics.median(ratios):.3f} x the recorded end strain "
+        print(f"after falling under {args.fraction} x it, the highest any curve came back to: {highest:.3f} x its peak")
+    print(f"every later maximum came by {max(needs):.3f} x the strain of the peak before it (median curve {statistics.median(needs):.3f})")
+    print(f"a stop at {rule} ends at {statistics.median(ratios):.3f} x the recorded end strain "
           f"(median; {min(ratios):.3f}-{max(ratios):.3f})")
     return 1 if recovered else 0
 

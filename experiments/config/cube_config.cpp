@@ -154,6 +154,7 @@ void read_test(Context& ctx, const toml::table& root, CubeConfig& c) {
     }
     s.real("ramp_strain", t.loading.ramp_strain);
     s.real("stop_fraction", t.loading.stop_fraction);
+    s.real("stop_strain_ratio", t.loading.stop_strain_ratio);
     s.real("max_strain", t.loading.max_strain);
     s.integer("record_interval", t.loading.record_interval);
     s.real("gauge_length_fraction", t.gauge_length_fraction);
@@ -193,6 +194,7 @@ const FieldMap kFields = {
     {"genesis.max_steps", "genesis.max_steps"},
     {"PlatenTestSpec::strain_rate", "test.strain_rate_per_s"}, {"PlatenTestSpec::ramp_strain", "test.ramp_strain"},
     {"PlatenTestSpec::platen_friction", "material.platen_friction"}, {"PlatenTestSpec::stop_fraction", "test.stop_fraction"},
+    {"PlatenTestSpec::stop_strain_ratio", "test.stop_strain_ratio"},
     {"PlatenTestSpec::max_strain", "test.max_strain"}, {"PlatenTestSpec::record_interval", "test.record_interval"},
     {"CubeTestSpec::gauge_length_fraction", "test.gauge_length_fraction"}, {"CubeTestSpec::slab_fraction", "test.slab_fraction"},
     {"CubeTestSpec::core_fraction", "test.core_fraction"}, {"CubeTestSpec::settle_ratio", "test.settle_ratio"},

@@ -14,6 +14,8 @@ std::optional<std::string> PlatenTestSpec::invalid_reason() const {
     else if (!(ramp_strain >= 0.0)) out << "PlatenTestSpec::ramp_strain = " << ramp_strain << " violates >= 0";
     else if (!(platen_friction >= 0.0)) out << "PlatenTestSpec::platen_friction = " << platen_friction << " violates >= 0";
     else if (!(stop_fraction > 0.0 && stop_fraction < 1.0)) out << "PlatenTestSpec::stop_fraction = " << stop_fraction << " violates in (0, 1)";
+    else if (!(stop_strain_ratio == 0.0 || (stop_strain_ratio > 1.0 && std::isfinite(stop_strain_ratio))))
+        out << "PlatenTestSpec::stop_strain_ratio = " << stop_strain_ratio << " violates 0 (off) or > 1";
     else if (!(max_strain > 0.0 && max_strain < 0.5)) out << "PlatenTestSpec::max_strain = " << max_strain << " violates in (0, 0.5)";
     else if (record_interval < 1) out << "PlatenTestSpec::record_interval = " << record_interval << " violates >= 1";
     if (out.str().empty()) return std::nullopt;
@@ -36,6 +38,23 @@ double ramp_factor(double time, double ramp_time) {
     return 0.5 * (1.0 - std::cos(kPi * time / ramp_time));
 }
 
+namespace {
+
+/// The strain a curve is reduced on: the gauge strain, the platen strain without gauges [-].
+double reduced_strain(const CurvePoint& pt) {
+    return std::isfinite(pt.gauge_strain) ? pt.gauge_strain : pt.platen_strain;
+}
+
+/// The strain stop: the curve's strain `strain` has run past stop_strain_ratio × its value
+/// `strain_at_peak` (> 0) at a peak reached after the ramp (platen strain `platen_at_peak` past
+/// ramp_strain: a peak inside the ramp is the seating's, not the specimen's).
+bool past_peak_strain(const PlatenTestSpec& spec, double strain, double strain_at_peak, double platen_at_peak) {
+    return spec.stop_strain_ratio > 0.0 && platen_at_peak > spec.ramp_strain && strain_at_peak > 0.0 &&
+           strain > spec.stop_strain_ratio * strain_at_peak;
+}
+
+}  // namespace
+
 PlatenTestResult run_axial_loading(World& world, const PlatenTestSpec& spec, const AxialFrame& frame,
                                    const ProgressCallback& progress, const SnapshotCallback& snapshot) {
     if (auto why = spec.invalid_reason()) throw std::invalid_argument(*why);
@@ -49,6 +68,7 @@ PlatenTestResult run_axial_loading(World& world, const PlatenTestSpec& spec, con
     const double ramp_time = spec.ramp_strain / spec.strain_rate;
     const double t0 = world.time();
     double peak = 0.0;
+    double reduced_at_peak = 0.0;  // the curve's reduced strain at the peak [-]
     std::int64_t tension = 0, shear = 0;
     std::size_t seen_breaks = 0;
     for (std::int64_t step = 0;; ++step) {
@@ -75,11 +95,16 @@ PlatenTestResult run_axial_loading(World& world, const PlatenTestSpec& spec, con
             peak = pt.stress;
             r.peak_stress = pt.stress;
             r.strain_at_peak = pt.platen_strain;
+            reduced_at_peak = reduced_strain(pt);
         }
         if (progress) progress(pt, peak);
         if (snapshot) snapshot(world, pt);
         if (peak > 0.0 && pt.stress < spec.stop_fraction * peak && pt.platen_strain > r.strain_at_peak) {
             r.stop_reason = "post-peak";
+            break;
+        }
+        if (past_peak_strain(spec, reduced_strain(pt), reduced_at_peak, r.strain_at_peak)) {
+            r.stop_reason = "post-peak strain";
             break;
         }
         if (pt.platen_strain >= spec.max_strain) {

@@ -4,7 +4,8 @@
 // together at half the test speed each after a half-cosine velocity ramp; at every output
 // interval a curve point records the test's strains and end stresses (load over the initial
 // cross-section), breaks and kinetic energy; the run stops after the peak once the stress has
-// fallen to a fraction of it, at a maximum strain, or when the simulation diverges.
+// fallen to a fraction of it or (optionally) once the strain has run a set multiple past the
+// strain at the peak, at a maximum strain, or when the simulation diverges.
 // What differs between the tests (how the ends are driven, how load and strain are read, the
 // sign convention) is an AxialFrame; the curve is always "positive = the test's loading
 // direction" (compression positive in compression, tension positive in tension).
@@ -23,6 +24,11 @@ struct PlatenTestSpec {
     double ramp_strain = 2.0e-4;      ///< the speed ramps up (half cosine) over the time this strain takes at full rate [-]
     double platen_friction = 0.5;     ///< mu_w [-]
     double stop_fraction = 0.7;       ///< stop once stress < this x peak, after the peak [-]
+    /// Stop once the curve's strain (the gauge strain, which the curve is reduced on; the platen
+    /// strain without gauges) exceeds this × its value at the peak so far, for a peak reached
+    /// after the ramp (a curve that wanders on a plateau near its peak ends there instead of at
+    /// stop_fraction); 0: no such stop [-]. 0 or > 1.
+    double stop_strain_ratio = 0.0;
     double max_strain = 0.03;         ///< hard stop [-]
     std::int64_t record_interval = 50;  ///< steps between curve points
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
@@ -47,7 +53,7 @@ struct PlatenTestResult {
     double peak_stress = 0.0;             ///< [Pa]
     double strain_at_peak = 0.0;          ///< platen strain at the peak [-]
     double secant_modulus_40 = 0.0;       ///< stress / strain at 40 % of the peak [Pa]
-    std::string stop_reason;              ///< "post-peak", "max strain", "diverged: ..."
+    std::string stop_reason;              ///< "post-peak", "post-peak strain", "max strain", "diverged: ..."
     bool diverged = false;
     std::int64_t steps = 0;
     double wall_seconds = 0.0;

@@ -62,6 +62,8 @@ TEST_CASE("bad calibration configs are rejected with the file, line and key", "[
         {"edge under 3 x the largest grain", "edge_mm = 2.0\n", "", "key 'calibration.edge_mm': genesis.edge"},
         {"edge not positive", "edge_mm = -3.5\n", "", "key 'calibration.edge_mm' must be a positive cube edge"},
         {"stop fraction of 1", "stop_fraction = 1.0\n", "", "key 'calibration.stop_fraction' = 1.0: PlatenTestSpec::stop_fraction = 1 violates in (0, 1)"},
+        {"strain stop under the peak's strain", "stop_strain_ratio = 0.8\n", "",
+         "key 'calibration.stop_strain_ratio' = 0.8: PlatenTestSpec::stop_strain_ratio = 0.8 violates 0 (off) or > 1"},
         {"unknown run model", "model = \"fem\"\n", "", "key 'calibration.model' = \"fem\": expected \"dem\" or \"analytic\""},
         {"ITZ factor on a parallel-bond base", "", "[parameters.itz_strength_factor]\nfree = true\n",
          "parameter 'itz_strength_factor' applies to explicit-paste specimens only"},
@@ -103,6 +105,25 @@ TEST_CASE("calibration.stop_fraction replaces the base config's, for every test 
     const auto a = cal::make_dem_model(base.base, base.sands, true), b = cal::make_dem_model(early.base, early.sands, true);
     CHECK(a->run_fingerprint(cal::CubeTest::compression) != b->run_fingerprint(cal::CubeTest::compression));
     CHECK(a->run_fingerprint(cal::CubeTest::tension) != b->run_fingerprint(cal::CubeTest::tension));
+}
+
+TEST_CASE("calibration.stop_strain_ratio replaces the base config's, for every test and in its run keys, and off leaves the keys as they were", "[calibrate]") {
+    TempDir dir("cal-stop-strain");
+    write_lab(dir.path);
+    const cal::CalibrationProblem base = cal::load_calibration_problem(test::write_problem(dir.path, "", "", "base.toml"));
+    const cal::CalibrationProblem off =
+        cal::load_calibration_problem(test::write_problem(dir.path, "stop_strain_ratio = 0\n", "", "off.toml"));
+    const cal::CalibrationProblem strain =
+        cal::load_calibration_problem(test::write_problem(dir.path, "stop_strain_ratio = 1.5\n", "", "strain.toml"));
+    CHECK(base.base.test.loading.stop_strain_ratio == 0.0);
+    CHECK(strain.base.test.loading.stop_strain_ratio == 1.5);
+    CHECK(cal::validation_problem(strain).base.test.loading.stop_strain_ratio == 1.5);
+    const auto a = cal::make_dem_model(base.base, base.sands, true), o = cal::make_dem_model(off.base, off.sands, true),
+               b = cal::make_dem_model(strain.base, strain.sands, true);
+    for (const cal::CubeTest test : {cal::CubeTest::compression, cal::CubeTest::tension}) {
+        CHECK(a->run_fingerprint(test) == o->run_fingerprint(test));  // the ledgers of calibrations without it still hold
+        CHECK(a->run_fingerprint(test) != b->run_fingerprint(test));
+    }
 }
 
 TEST_CASE("missing or inconsistent lab results are rejected", "[calibrate]") {
@@ -194,6 +215,7 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
                 CHECK(p.tension_seeds == std::vector<std::uint64_t>{1});
                 CHECK(p.tension_runs_per_test({0, 1}) == 2);
                 CHECK(p.base.test.loading.stop_fraction == 0.9);  // scripts/post_peak_recovery.py on its earlier curves
+                CHECK(p.base.test.loading.stop_strain_ratio == 1.5);
             }
         }
     }

@@ -87,7 +87,7 @@ TEST_CASE("explicit paste: a tiny paste calibration runs end to end and recovers
     CHECK(a.peak_pa == b.peak_pa);
 
     test::write_text(dir.path / "problem.toml",
-                     "[calibration]\nbase = \"base.toml\"\nsands = [\"pre-blended\"]\nseeds = [1]\n"
+                     "[calibration]\nbase = \"base.toml\"\nsands = [\"pre-blended\"]\nseeds = [1]\nstop_strain_ratio = 1.2\n"
                      "[targets]\nlab_results = \"lab_results.json\"\n"
                      "[parameters.tensile_strength_mpa]\nfree = false\n[parameters.cohesion_ratio]\nfree = false\n"
                      "[parameters.strength_cv]\nfree = false\n"
@@ -118,6 +118,7 @@ TEST_CASE("explicit paste: a tiny paste calibration runs end to end and recovers
     REQUIRE(calibrated.specimen.paste);
     CHECK(calibrated.specimen.paste->paste.min_diameter == cube.specimen.paste->paste.min_diameter);
     CHECK(calibrated.cache_dir == fs::absolute(dir.path / "cache"));
+    CHECK(calibrated.test.loading.stop_strain_ratio == 1.2);  // the calibration's stop rules, so its runs repeat
     const cal::RunOutcome* at_best = nullptr;
     for (const cal::Evaluation& e : r.history)
         if (e.values == r.stages.at(0).solution.best && !e.runs.empty()) at_best = &e.runs.front();

@@ -292,6 +292,17 @@ TEST_CASE("plan: a flat joint's runs are priced with its law's PlatenTestCost", 
                                                                                        law.compression_peak_over_elastic)) /
                                             law.compression_end_over_elastic)
                                          .epsilon(0.02));
+
+    // With a strain stop at 1.2 x the strain at peak, the loading ends there: 1.2 x 1.5 / 4 of
+    // its length at 0.7, and the plan says so.
+    test::write_text(dir.path / "strain.toml", "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1]\n"
+                                               "stop_strain_ratio = 1.2\n[targets]\nlab_results = \"lab_results.json\"\n"
+                                               "[solver]\nmax_runs = 4\n[output]\ndir = \"out\"\n");
+    const cal::CalibrationPlan strain = cal::plan_calibration(cal::load_calibration_problem(dir.path / "strain.toml"), 0.5);
+    const double strain_loading = strain.runs.front().compression_steps - strain.runs.front().settle_steps;
+    CHECK(strain_loading / loading ==
+          Approx(1.2 * law.compression_peak_over_elastic / law.compression_end_over_elastic).epsilon(0.02));
+    CHECK(cal::plan_text(strain).find("ends by 1.2 x its expected strain at peak") != std::string::npos);
 }
 
 TEST_CASE("plan: the result's tension tests on the fitted tension seeds alone, the path's other runs compression",
