@@ -96,8 +96,8 @@ void apply_edge(Context& ctx, double edge, exp::CubeConfig& base) {
 }
 
 // [calibration] stop_fraction and stop_strain_ratio: where every platen test of the calibration
-// stops after its peak (stress under stop_fraction × the peak; platen strain past
-// stop_strain_ratio × the strain at the peak), replacing the base config's test keys of the same
+// stops after its peak (stress under stop_fraction × the peak; gauge strain past
+// stop_strain_ratio × its value at the peak), replacing the base config's test keys of the same
 // names: the targets are at or before the peak, so a calibration need not follow the softening
 // as far as a study.
 void apply_stop_rule(Context& ctx, const std::string& key, double exp::PlatenTestSpec::*field, double value,
