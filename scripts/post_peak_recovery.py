@@ -3,15 +3,17 @@
 whether its stress, after falling under a fraction f of its running peak, ever rose above that
 peak again (a later, higher peak that a test stopped at f would have missed), and where a test
 stopped at f would have ended against where it did. With --strain-ratio r, the same for the
-strain stop (test.stop_strain_ratio): whether a curve rose above a running peak only after its
-strain had passed r x that peak's strain, and where the two stops together would have ended it.
+strain stop (test.stop_strain_ratio): whether a curve rose above a running peak only after a
+point whose strain had passed r x that peak's (where the stop would have ended it), and where
+the two stops together would have ended it.
 
     /usr/bin/python3 scripts/post_peak_recovery.py out/calibration-joint/ledger.sqlite [...] [--fraction 0.9] [--strain-ratio 1.5]
 
-A ledger's `runs.curve` holds "platen_strain stress;..." pairs (compression and tension alike,
-stress positive in the test's own sense). The start of a curve, before the stress first reaches
-a third of its peak, is not a peak: the platen seating moves there. Each run key counts once.
-Exit status 1 if any curve recovered, so a script can gate a stop fraction on it.
+A ledger's `runs.curve` holds "strain stress;..." pairs (the gauge strain the curve is reduced
+on; compression and tension alike, stress positive in the test's own sense). The start of a
+curve, before the stress first reaches a third of its peak, is not a peak: the platen seating
+moves there. Each run key counts once. Exit status 1 if any curve recovered (or would have been
+cut before a later maximum), so a script can gate a stop on it.
 """
 import argparse
 import sqlite3
@@ -44,16 +46,19 @@ def recovery(points, fraction):
 
 
 def strain_needed(points):
-    """The largest strain ratio a strain stop needs to see every later, higher maximum: over the
-    curve, the strain where it first rose above a running peak over that peak's strain [-] (1:
-    every new maximum came at once)."""
+    """The smallest strain ratio a strain stop needs to see every later, higher maximum [-] (1:
+    none came after a dip). A stop is checked at points that set no new maximum, so a later
+    maximum is missed by a ratio under the strain of the last point before it over the strain
+    of the running peak it exceeded."""
     top = max(s for _, s in points)
-    running, at, needed = 0.0, 0.0, 1.0
+    running, at, pending, needed = 0.0, 0.0, 1.0, 1.0
     for strain, stress in points:
         if stress > running:
             if running > top / 3.0 and at > 0.0:
-                needed = max(needed, strain / at)
-            running, at = stress, strain
+                needed = max(needed, pending)
+            running, at, pending = stress, strain, 1.0
+        elif at > 0.0:
+            pending = max(pending, strain / at)
     return needed
 
 
@@ -98,7 +103,7 @@ def main():
                 recovered.append(f"{path}: {sand} seed {seed} (run {key}) rose to {rise:.4f} x its earlier peak")
             needs.append(strain_needed(points))
             if args.strain_ratio and needs[-1] > args.strain_ratio:
-                recovered.append(f"{path}: {sand} seed {seed} (run {key}) rose above a peak at {needs[-1]:.3f} x its strain")
+                recovered.append(f"{path}: {sand} seed {seed} (run {key}) rose above a peak after {needs[-1]:.3f} x its strain")
             ratios.append(end_ratio(points, args.fraction, args.strain_ratio))
     if not ratios:
         sys.exit("no curves in " + ", ".join(args.ledgers))
@@ -108,7 +113,8 @@ def main():
         print("  " + line)
     if highest > 0.0:
         print(f"after falling under {args.fraction} x it, the highest any curve came back to: {highest:.3f} x its peak")
-    print(f"every later maximum came by {max(needs):.3f} x the strain of the peak before it (median curve {statistics.median(needs):.3f})")
+    print(f"seeing every later maximum needs a strain ratio of {max(needs):.3f} (the median curve {statistics.median(needs):.3f}): "
+          "the strain of the last point before it over that of the peak it rose above")
     print(f"a stop at {rule} ends at {statistics.median(ratios):.3f} x the recorded end strain "
           f"(median; {min(ratios):.3f}-{max(ratios):.3f})")
     return 1 if recovered else 0

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """scripts/post_peak_recovery.py on a ledger with known curves: a curve that falls to 0.88 x its
 peak and then rises to 1.02 x it is a recovery for a stop at 0.9 and not for one at 0.85 (it never
-fell under 0.85 x the peak); where each stop would end; bad input refused.
+fell under 0.85 x the peak); its last point before that later maximum lies at 1.25 x the first
+peak's strain, so a strain stop at 1.2 x misses it and one at 1.3 x does not; where each stop
+would end; bad input refused.
 
     test_post_peak_recovery.py <path of scripts/post_peak_recovery.py>
 """
@@ -60,6 +62,17 @@ def main():
         expect(r.returncode == 0 and r.stdout.startswith("1 curves;"), "each run key once", r)
         expect("ends at 0.750 x the recorded end strain" in r.stdout, "the end of a stop at 0.9: 3e-3 / 4e-3", r)
         expect("came back to: 0.840 x its peak" in r.stdout, "the highest stress after the fall: 8.4 MPa", r)
+
+        r = run(script, both, "--fraction", "0.85", "--strain-ratio", "1.2")
+        expect(r.returncode == 1 and "pre-blended seed 1 (run a) rose above a peak after 1.250 x its strain" in r.stdout,
+               "the later maximum at 3e-3 after the peak at 2e-3 and a point at 2.5e-3: missed by a strain stop at 1.2", r)
+        r = run(script, both, "--fraction", "0.85", "--strain-ratio", "1.3")
+        expect(r.returncode == 0 and "needs a strain ratio of 1.250" in r.stdout, "caught by one at 1.3", r)
+        # the plain curve with a strain stop at 1.2: past 2.4e-3 at its point at 2.5e-3, before 0.9 x the peak
+        r = run(script, plain, "--fraction", "0.9", "--strain-ratio", "1.2")
+        expect(r.returncode == 0 and "ends at 0.625 x the recorded end strain" in r.stdout, "the end of the strain stop: 2.5e-3 / 4e-3", r)
+        r = run(script, plain, "--strain-ratio", "1.0")
+        expect(r.returncode != 0 and "--strain-ratio 1.0: expected a number > 1" in r.stderr, "a strain ratio of 1 refused", r)
 
         r = run(script, plain, "--fraction", "1.2")
         expect(r.returncode != 0 and "--fraction 1.2: expected a number in (0, 1)" in r.stderr, "a bad fraction refused", r)
