@@ -85,8 +85,8 @@ std::string calibrated_cube_config(const CalibrationProblem& p, toml::table root
     constexpr double kMm = 1e-3;  // [m] per config mm
     table_of(root, "genesis").insert_or_assign("edge_mm", exact_config(edge, kMm));
     table_of(root, "test").insert_or_assign("stop_fraction", p.base.test.loading.stop_fraction);  // the calibration's
-    if (p.base.test.loading.stop_strain_ratio > 0.0)
-        table_of(root, "test").insert_or_assign("stop_strain_ratio", p.base.test.loading.stop_strain_ratio);
+    if (toml::table& test = table_of(root, "test"); p.base.test.loading.stop_strain_ratio > 0.0 || test.contains("stop_strain_ratio"))
+        test.insert_or_assign("stop_strain_ratio", p.base.test.loading.stop_strain_ratio);  // the calibration's (absent: off)
     if (p.base.specimen.paste) {
         toml::table& paste = table_of(root, "paste");
         paste.insert_or_assign("min_diameter_mm", exact_config(p.base.specimen.paste->paste.min_diameter, kMm));
