@@ -17,11 +17,26 @@
 
 namespace gradem {
 
-/// What a pair exerts this step: force on j, moment on j; i gets -force and
-/// -torque_j - (x_j - x_i) x force (angular momentum balance).
+/// What a pair exerts this step: the force on j, the moment on j and the moment on i; i gets
+/// -force_j and
+///     torque_i = -(torque_j + (x_j - x_i) x force_j)   (angular momentum balance),
+/// set by whoever writes the slot last in the step (set_i_side), so that the gather reads each
+/// side's moment instead of computing i's from the partner's position (World::gather_forces).
 struct PairOutput {
-    Vec3 force_j, torque_j;
+    Vec3 force_j, torque_j;  ///< [N], [N m]
+    Vec3 torque_i;           ///< [N m]
 };
+
+/// The moment on i from the slot's force and moment on j; d = x_j - x_i [m] at the positions
+/// the forces were evaluated at (the expression the gather used: the same bits).
+inline void set_i_side(PairOutput& out, const Vec3& d) { out.torque_i = -(out.torque_j + cross(d, out.force_j)); }
+
+/// The moment on j (as_i false) or on i (true), read from its address: no branch on the side.
+inline const Vec3& moment_on(const PairOutput& out, bool as_i) {
+    static_assert(offsetof(PairOutput, torque_i) == offsetof(PairOutput, torque_j) + sizeof(Vec3));
+    const char* on_j = reinterpret_cast<const char*>(&out) + offsetof(PairOutput, torque_j);
+    return *reinterpret_cast<const Vec3*>(on_j + static_cast<std::size_t>(as_i) * sizeof(Vec3));
+}
 
 /// Per-bond constants (they depend only on the radii and BondParams): R̄, 1/R̄ and the
 /// stiffness, computed once instead of three divisions per bond and step (32 bytes; the
@@ -66,12 +81,13 @@ struct BondPass {
     bool replaces_contact;  ///< the bonds replace their pairs' contacts (BondParams::bond_replaces_contact)
 };
 
-/// An acting bond's force and moment on j into its pair's slot. A bond that replaces its pair's
-/// contact owns the slot (the contact phase leaves it alone: World::compute_contacts) and sets
-/// it; one beside the contact adds to the contact's. Setting gives the bits of adding to the +0
-/// the contact phase used to write, but for the sign of a zero, which no particle's sum can see
-/// (a sum that starts at +0 never becomes -0, and adding a zero of either sign to it changes no bit).
-inline void bond_output(PairOutput& out, const Vec3& force_j, const Vec3& torque_j, bool replaces_contact) {
+/// An acting bond's force and moment on j into its pair's slot, and the moment on i from the
+/// total (d = x_j - x_i [m]). A bond that replaces its pair's contact owns the slot (the contact
+/// phase leaves it alone: World::compute_contacts) and sets it; one beside the contact adds to
+/// the contact's. Setting gives the bits of adding to the +0 the contact phase used to write, but
+/// for the sign of a zero, which no particle's sum can see (a sum that starts at +0 never becomes
+/// -0, and adding a zero of either sign to it changes no bit).
+inline void bond_output(PairOutput& out, const Vec3& force_j, const Vec3& torque_j, bool replaces_contact, const Vec3& d) {
     if (replaces_contact) {
         out.force_j = force_j;
         out.torque_j = torque_j;
@@ -79,9 +95,11 @@ inline void bond_output(PairOutput& out, const Vec3& force_j, const Vec3& torque
         out.force_j += force_j;
         out.torque_j += torque_j;
     }
+    set_i_side(out, d);
 }
 
-/// The slot of a bond released this step: zero if the bond owned it (bond_output).
+/// The slot of a bond released this step: zero if the bond owned it (bond_output); beside the
+/// contact, the contact's output (its moment on i included) stays.
 inline void released_bond_output(PairOutput& out, bool replaces_contact) {
     if (replaces_contact) out = {};
 }

@@ -632,7 +632,8 @@ struct FlatJointPass {
         BondStepResult r;
         r.stored = track ? L.stored[l] : 0.0;
         r.slip = track ? L.slip[l] : 0.0;
-        bond_output(pass.pair_out[static_cast<std::size_t>(b.slot)], lane(L.force, l), lane(L.torque, l), pass.replaces_contact);
+        bond_output(pass.pair_out[static_cast<std::size_t>(b.slot)], lane(L.force, l), lane(L.torque, l), pass.replaces_contact,
+                    lane(L.xb, l) - lane(L.xa, l));
         return r;
     }
 
@@ -656,7 +657,7 @@ struct FlatJointPass {
         breaks.clear();
         PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
         if (r.failure != BondState::intact) released_bond_output(out, pass.replaces_contact);
-        else bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, pass.replaces_contact);
+        else bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, pass.replaces_contact, s.xb - s.xa);
         return r;
     }
 };

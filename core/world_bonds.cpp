@@ -168,7 +168,7 @@ World::BondEnergy World::compute_bonds_with(double dt) {
                 released_bond_output(out, replaces);
                 continue;
             }
-            bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, replaces);
+            bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, replaces, s.xb - s.xa);
         }
         partial[static_cast<std::size_t>(blk)] = e;
     });

@@ -33,29 +33,28 @@ struct BlockSums {
 
 }  // namespace
 
-// Each particle sums the outputs of its pairs and wall contacts, in slot order. Branch-free
-// (whether the particle is a pair's i or j is a coin flip in a packing in Morton order, and a
-// branch on it mispredicted): as j it adds F and M_j, as i it adds -F and -(M_j + d x F) with
-// d = x_j - x_i, the same bits as subtracting F and M_j + d x F.
+// Each particle sums the outputs of its pairs and wall contacts, in slot order: as j it adds F
+// and M_j, as i it adds -F and M_i (PairOutput::torque_i = -(M_j + d x F), d = x_j - x_i, set by
+// the pass that wrote the slot: the same bits as subtracting F and M_j + d x F here).
+// Branch-free (whether the particle is a pair's i or j is a coin flip in a packing in Morton
+// order, and a branch on it mispredicted): the sign of F is a factor ±1 (exact), the moment read
+// from the side's address.
 void World::gather_forces() {
     const auto n = static_cast<std::int64_t>(particles_.size());
     ParticleSet& P = particles_;
-    const Vec3* const x = P.position.data();
     const Incidence* const incidence = incidence_.data();
     const PairOutput* const out = pair_out_.data();
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
         for (std::int64_t p = begin; p < end; ++p) {
             const auto i = static_cast<std::size_t>(p);
-            const Vec3 xi = x[i];
             Vec3 f, t;
             for (std::int32_t e = incidence_start_[i]; e < incidence_start_[i + 1]; ++e) {
                 const Incidence inc = incidence[e];
                 const PairOutput& o = out[inc.slot];
-                const bool as_j = inc.partner >= 0;
-                const std::int32_t partner = as_j ? inc.partner : ~inc.partner;
-                const Vec3 d = x[partner] - xi;  // used as i only
-                f += select(as_j, o.force_j, -o.force_j);
-                t += select(as_j, o.torque_j, -(o.torque_j + cross(d, o.force_j)));
+                const bool as_i = inc.partner < 0;
+                const double sign = 1.0 - 2.0 * static_cast<double>(as_i);  // +1 as j, -1 as i
+                f += sign * o.force_j;
+                t += moment_on(o, as_i);
             }
             for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
                 f += wall_out_[static_cast<std::size_t>(w)].force;
@@ -144,16 +143,20 @@ __attribute__((always_inline)) inline void integrate_body(const IntegrateArrays&
     }
 }
 
-GRADEM_INTEGRATE_CLONES void integrate_chunk(const IntegrateArrays& A, std::int64_t p0, std::int64_t count, double dt,
+GRADEM_INTEGRATE_CLONES bool integrate_chunk(const IntegrateArrays& A, std::int64_t p0, std::int64_t count, double dt,
                                              double alpha, ChunkTerms& T) {
     std::uint8_t any_fixed = 0;
     for (std::int64_t q = 0; q < count; ++q) any_fixed |= A.flags[p0 + q];
-    if (any_fixed == 0) return integrate_body<true>(A, p0, count, dt, alpha, T);
+    if (any_fixed == 0) {
+        integrate_body<true>(A, p0, count, dt, alpha, T);
+        return false;
+    }
     for (std::int64_t q = 0; q < count; ++q) {
         T.fixed_v[q] = (A.flags[p0 + q] & kFixedVelocity) ? 1.0 : 0.0;
         T.fixed_w[q] = (A.flags[p0 + q] & kFixedSpin) ? 1.0 : 0.0;
     }
     integrate_body<false>(A, p0, count, dt, alpha, T);
+    return true;
 }
 
 }  // namespace
@@ -171,10 +174,14 @@ World::IntegrationSums World::integrate() {
         ChunkTerms T;
         for (std::int64_t p0 = begin; p0 < end; p0 += kIntegrateChunk) {
             const std::int64_t count = std::min(kIntegrateChunk, end - p0);
-            integrate_chunk(arrays, p0, count, dt, alpha, T);
+            // A chunk without a prescribed velocity or spin has no boundary work: its terms are +0,
+            // and x - (+0) is x, so they are not subtracted (the longest chain of the sums).
+            const bool any_prescribed = integrate_chunk(arrays, p0, count, dt, alpha, T);
             for (std::int64_t q = 0; q < count; ++q) {  // the sums in particle order
-                s.boundary -= T.boundary_v[q];
-                s.boundary -= T.boundary_w[q];
+                if (any_prescribed) {
+                    s.boundary -= T.boundary_v[q];
+                    s.boundary -= T.boundary_w[q];
+                }
                 s.kinetic += T.kinetic[q];
                 s.damping -= T.damping[q];
                 s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);

@@ -36,6 +36,7 @@
 #include <memory>
 
 #include "core/contact_law.hpp"
+#include "core/lane_load.hpp"
 #include "core/parallel.hpp"
 #include "core/parallel_bond_law.hpp"
 #include "core/world.hpp"
@@ -65,7 +66,8 @@ struct BatchParticles {
 /// (contact and bond, as they act), which parts act, the energies, and the bond's failure code
 /// and peak stresses (breaks only).
 struct BatchResults {
-    double force[3][kLanes], torque[3][kLanes];  ///< [N], [N m]
+    double force[3][kLanes], torque[3][kLanes];  ///< on j [N], [N m]
+    double torque_i[3][kLanes];                  ///< on i (set_i_side) [N m]
     double open[kLanes];                         ///< 1: the pair does not overlap
     double contact_strain[kLanes], contact_slip[kLanes];  ///< [J], 0 when open
     double failure[kLanes];                      ///< BondState of an intact bond after the step; intact without one
@@ -108,29 +110,71 @@ __attribute__((always_inline)) inline void prefetch_ahead(const BatchAhead& ahea
     __builtin_prefetch(&A.radius[j]);
 }
 
-/// Lanes [0, count) of P from the particle arrays (the rest stay as they are, never used), and
-/// whether each pair is open (R.open, the separate contact phase's test); true if any overlaps.
-inline bool load_particles(BatchParticles& P, BatchResults& R, const PairBatch& B, int count, const ParticleArrays& A,
-                           const BatchAhead& ahead) {
+/// Whether lane l's pair is open (R.open, the separate contact phase's test); true if it overlaps.
+__attribute__((always_inline)) inline bool overlap_test(BatchResults& R, const BatchParticles& P, int l) {
+    const double ra = P.ra[l], rb = P.rb[l];
+    const bool open = norm2(lane(P.xb, l) - lane(P.xa, l)) >= (ra + rb) * (ra + rb);
+    R.open[l] = open ? 1.0 : 0.0;
+    return !open;
+}
+
+/// Lanes [0, count) of P from the particle arrays, one double at a time (the rest stay as they
+/// are, never used), and whether each pair is open; true if any overlaps.
+inline bool load_particles_scalar(BatchParticles& P, BatchResults& R, const PairBatch& B, int count,
+                                  const ParticleArrays& A, const BatchAhead& ahead) {
     bool any_overlap = false;
     for (int l = 0; l < count; ++l) {
         prefetch_ahead(ahead, l, A);
         const std::int32_t a = B.i[l], b = B.j[l];
-        const Vec3 xa = A.position[a], xb = A.position[b];
-        set_lane(P.xa, l, xa);
-        set_lane(P.xb, l, xb);
+        set_lane(P.xa, l, A.position[a]);
+        set_lane(P.xb, l, A.position[b]);
         set_lane(P.va, l, A.velocity[a]);
         set_lane(P.vb, l, A.velocity[b]);
         set_lane(P.wa, l, A.spin[a]);
         set_lane(P.wb, l, A.spin[b]);
-        const double ra = A.radius[a], rb = A.radius[b];
-        P.ra[l] = ra;
-        P.rb[l] = rb;
-        const bool open = norm2(xb - xa) >= (ra + rb) * (ra + rb);
-        R.open[l] = open ? 1.0 : 0.0;
-        any_overlap |= !open;
+        P.ra[l] = A.radius[a];
+        P.rb[l] = A.radius[b];
+        any_overlap |= overlap_test(R, P, l);
     }
     return any_overlap;
+}
+
+#ifdef GRADEM_LANE_TRANSPOSE
+/// The same lanes by transposes, four at a time (core/lane_load.hpp): the lanes up to the next
+/// multiple of four past `count` are loaded too (the batch's lanes past the last pair hold
+/// particle 0: pair_batch.hpp), and never used.
+__attribute__((target("avx2"))) bool load_particles_transposed(BatchParticles& P, BatchResults& R, const PairBatch& B,
+                                                               int count, const ParticleArrays& A, const BatchAhead& ahead) {
+    bool any_overlap = false;
+    for (int l0 = 0; l0 < count; l0 += 4) {
+        const std::int32_t* a = &B.i[l0];
+        const std::int32_t* b = &B.j[l0];
+        transposed_lanes4(&P.xa[0][l0], &P.xa[1][l0], &P.xa[2][l0], A.position, a);
+        transposed_lanes4(&P.xb[0][l0], &P.xb[1][l0], &P.xb[2][l0], A.position, b);
+        transposed_lanes4(&P.va[0][l0], &P.va[1][l0], &P.va[2][l0], A.velocity, a);
+        transposed_lanes4(&P.vb[0][l0], &P.vb[1][l0], &P.vb[2][l0], A.velocity, b);
+        transposed_lanes4(&P.wa[0][l0], &P.wa[1][l0], &P.wa[2][l0], A.spin, a);
+        transposed_lanes4(&P.wb[0][l0], &P.wb[1][l0], &P.wb[2][l0], A.spin, b);
+        for (int l = l0; l < l0 + 4 && l < count; ++l) {
+            prefetch_ahead(ahead, l, A);
+            P.ra[l] = A.radius[B.i[l]];
+            P.rb[l] = A.radius[B.j[l]];
+            any_overlap |= overlap_test(R, P, l);
+        }
+    }
+    return any_overlap;
+}
+#endif
+
+/// Lanes [0, count) of P and the open test (R.open); true if any pair of the batch overlaps.
+inline bool load_particles(BatchParticles& P, BatchResults& R, const PairBatch& B, int count, const ParticleArrays& A,
+                           const BatchAhead& ahead, bool transpose) {
+#ifdef GRADEM_LANE_TRANSPOSE
+    if (transpose) return load_particles_transposed(P, R, B, count, A, ahead);
+#else
+    (void)transpose;
+#endif
+    return load_particles_scalar(P, R, B, count, A, ahead);
 }
 
 /// The scalars of one pass: the step, the contact law's parameters, and the bonds' stiffness,
@@ -227,8 +271,11 @@ __attribute__((always_inline, flatten)) inline void pair_batch_body(PairBatch& B
         ParallelBondLaw::Advance adv = lane_bond<Uniform>(B, R, l, s, kin, K);
         const bool holds = (B.bond[l] >= 0) & (adv.failure == BondState::intact);
         const Vec3 bond_torque = cross(kin.arm_b, adv.force_j) + adv.moment_j;
-        set_lane(R.force, l, select(holds, force + adv.force_j, force));
-        set_lane(R.torque, l, select(holds, torque + bond_torque, torque));
+        const Vec3 force_j = select(holds, force + adv.force_j, force);
+        const Vec3 torque_j = select(holds, torque + bond_torque, torque);
+        set_lane(R.force, l, force_j);
+        set_lane(R.torque, l, torque_j);
+        set_lane(R.torque_i, l, -(torque_j + cross(s.xb - s.xa, force_j)));  // set_i_side's expression
     }
 }
 
@@ -299,6 +346,7 @@ void clear_bond_lane(PairBatch& B, int l) {
 struct World::ParallelBondPass {
     World& w;
     bool track;  ///< keep bond energies (sim_.track_energy)
+    bool transpose = lane_transpose_available();  ///< particles into lanes by transposes (core/lane_load.hpp)
     ParticleArrays particles;
     PassScalars scalars;
     int ahead_lines;  ///< 64-byte lines per lane that cover the part of a batch the kernel reads
@@ -351,7 +399,7 @@ struct World::ParallelBondPass {
             PairBatch& B = w.pair_batches_[static_cast<std::size_t>(k0 / kLanes)];
             const int count = static_cast<int>(std::min<std::int64_t>(end - k0, kLanes));
             if constexpr (Prefetch) prefetch_slots(k0 + kLanes, end);
-            const bool any_overlap = load_particles(*lanes, *results, B, count, particles, ahead_of(k0, end));
+            const bool any_overlap = load_particles(*lanes, *results, B, count, particles, ahead_of(k0, end), transpose);
             run_batch(B, *results, *lanes, scalars, any_overlap);
             if (write_results(k0, count, B, *results, bo)) record_breaks(count, B, *results, bo);
         }
@@ -377,6 +425,7 @@ struct World::ParallelBondPass {
             PairOutput& out = w.pair_out_[static_cast<std::size_t>(k0 + l)];
             out.force_j = lane(R.force, l);
             out.torque_j = lane(R.torque, l);
+            out.torque_i = lane(R.torque_i, l);
             if (R.open[l] == 0.0) {
                 strain_sum += R.contact_strain[l];
                 slip_sum += R.contact_slip[l];

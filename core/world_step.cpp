@@ -159,6 +159,7 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
             p.shear_force = r.shear_force;
             out.force_j = r.normal_force * kin.normal + r.shear_force;
             out.torque_j = cross(kin.arm_b, out.force_j);
+            set_i_side(out, d);
             e.stored += r.strain_energy;
             e.dissipated += r.slip_energy;
         }
