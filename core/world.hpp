@@ -9,7 +9,8 @@
 //                    pair's contact (with the parallel bond, 2 and 3 are one vectorised pass
 //                    over the pairs, bitwise the same: world_pairs.cpp);
 //   4. walls       - linear contact with each platen, into per-wall-contact slots;
-//   5. gather      - each particle sums its slots in a fixed order into force/torque;
+//   5. gather      - each particle sums its slots in a fixed order into force/torque (a slot
+//                    carries the moment on each side: PairOutput, core/bond_pass.hpp);
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
 //                    first, then forces at the new configuration, as PFC cycles).
 // Determinism: every interaction is computed once into its own slot, every particle sums its
