@@ -3,7 +3,7 @@
 // lane's Vec3 (24 bytes, at base[index[l]]) read by one masked 256-bit load (the fourth double
 // masked out: nothing is read past the Vec3), the four rows transposed into the x, y and z lanes
 // by two unpacks and two 128-bit permutes. A copy of bits, so the lanes hold exactly what the
-// scalar copy (one double at a time) gives; it issues a sixth of that copy's loads and a quarter
+// scalar copy (one double at a time) gives; it issues a third of that copy's loads and a quarter
 // of its stores (bench/README.md "Particles into lanes by transposes"). Other processors and
 // compilers keep the scalar copy: `lane_transpose_available()` says which one runs.
 #include <cstdint>
