@@ -27,9 +27,15 @@ struct PairOutput {
     Vec3 torque_i;           ///< [N m]
 };
 
-/// The moment on i from the slot's force and moment on j; d = x_j - x_i [m] at the positions
-/// the forces were evaluated at (the expression the gather used: the same bits).
-inline void set_i_side(PairOutput& out, const Vec3& d) { out.torque_i = -(out.torque_j + cross(d, out.force_j)); }
+/// The moment on i [N m] from the force [N] and moment [N m] on j; d = x_j - x_i [m] at the
+/// positions the forces were evaluated at. The one expression every writer of a slot uses (the
+/// parallel bond's kernel across its lanes too), so all give the same bits.
+inline Vec3 moment_on_i(const Vec3& torque_j, const Vec3& force_j, const Vec3& d) {
+    return -(torque_j + cross(d, force_j));
+}
+
+/// Sets the slot's moment on i from its force and moment on j (moment_on_i).
+inline void set_i_side(PairOutput& out, const Vec3& d) { out.torque_i = moment_on_i(out.torque_j, out.force_j, d); }
 
 /// The moment on j (as_i false) or on i (true), read from its address: no branch on the side.
 inline const Vec3& moment_on(const PairOutput& out, bool as_i) {

@@ -4,8 +4,9 @@
 // masked out: nothing is read past the Vec3), the four rows transposed into the x, y and z lanes
 // by two unpacks and two 128-bit permutes. A copy of bits, so the lanes hold exactly what the
 // scalar copy (one double at a time) gives; it issues a third of that copy's loads and a quarter
-// of its stores (bench/README.md "Particles into lanes by transposes"). Other processors and
-// compilers keep the scalar copy: `lane_transpose_available()` says which one runs.
+// of its stores (bench/README.md "Each side's moment in its pair's slot, particles into lanes by
+// transposes"). Other processors and compilers keep the scalar copy:
+// `lane_transpose_available()` says which one runs.
 #include <cstdint>
 
 #include "core/vec3.hpp"

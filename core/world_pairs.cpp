@@ -275,7 +275,7 @@ __attribute__((always_inline, flatten)) inline void pair_batch_body(PairBatch& B
         const Vec3 torque_j = select(holds, torque + bond_torque, torque);
         set_lane(R.force, l, force_j);
         set_lane(R.torque, l, torque_j);
-        set_lane(R.torque_i, l, -(torque_j + cross(s.xb - s.xa, force_j)));  // set_i_side's expression
+        set_lane(R.torque_i, l, moment_on_i(torque_j, force_j, s.xb - s.xa));
     }
 }
 
