@@ -25,10 +25,13 @@ constexpr double kPi = 3.14159265358979323846;
 // F(d) = 1 - exp(-(d/d')^n) gives 8.4 / 15.0 / 26.2 % and 98.6 % passing 75 µm.
 constexpr double kCementSizeParameter = 15.0e-6;  // d' [m]
 constexpr double kCementSpread = 0.9;             // n [-]
-// Bytes per particle of a bonded specimen: particle arrays (≈ 150 B), ≈ 8 Verlet pairs with
-// their output slots and incidences (≈ 850 B), ≈ 4 bonds (≈ 450 B), neighbour grid, rebuild
-// positions and the packing copies (≈ 250 B): rounded up to 2 kB.
-constexpr double kBytesPerParticle = 2000.0;
+// Bytes per particle of a bonded specimen at its peak: the World's arrays (particles, Verlet
+// pairs with their 72-byte output slots and incidences, bonds and their side state) hold 2.0 kB
+// per particle on the small paste cube of tests/experiments/test_paste_specimen.cpp and 2.8 /
+// 3.0 kB per grain on 2·10⁴-grain genesis specimens with parallel bonds / flat joints
+// (`gradem-bench --specimens 20000`, "bytes_per_particle"); the neighbour grid, the packing and
+// the lane buffers bring the process to 3.4 kB there ("peak_rss_bytes_per_particle"): 3.5 kB.
+constexpr double kBytesPerParticle = 3500.0;
 
 double& component(Vec3& v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
 

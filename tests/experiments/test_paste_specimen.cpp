@@ -1,8 +1,9 @@
 // Explicit-paste specimens end to end: the config keys ([specimen] representation,
 // [mix], [paste]) with their errors naming file, line and key; the paste cache keyed on the
 // paste settings; bond families in the bonded cube specimen (sand-sand frictional, ITZ bonds
-// scaled, paste-paste bonds = [material]); the cube test of a paste specimen bitwise the same
-// for 1, 2 and 3 threads.
+// scaled, paste-paste bonds = [material]); the memory estimate checked before the fill against
+// the bonded cube's arrays; the cube test of a paste specimen bitwise the same for 1, 2 and 3
+// threads.
 #include "../input_files.hpp"
 #include "../temp_dir.hpp"
 #include <catch2/catch.hpp>
@@ -14,6 +15,7 @@
 #include "experiments/virtual_tests/cube_specimen.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 #include "experiments/paste/paste_cache.hpp"
+#include "experiments/paste/paste_fill.hpp"
 #include "experiments/virtual_tests/tension_test.hpp"
 #include "common/input_error.hpp"
 #include "reports/cube_output.hpp"
@@ -174,6 +176,31 @@ TEST_CASE("paste specimen: bond families in the bonded cube", "[paste]") {
     m.families.sand_sand_bonded = true;
     CubeTestResult r2;
     CHECK(settled_cube_specimen(k, m, spec, r2).bonds().size() > w.bonds().size());
+}
+
+TEST_CASE("paste specimen: the memory estimate checked before the fill bounds the bonded cube's arrays", "[paste]") {
+    // The estimate refuses a paste size the machine cannot hold before anything is allocated
+    // (paste_fill.cpp check_memory); it must not fall under what the bonded specimen then
+    // holds, flat joints (the paste cube's law) with their pair slots and side state, once
+    // its pair list is built by a few steps.
+    const test::TempDir dir("paste-memory");
+    const Packing k = load_or_generate(test::pre_blended_curve(), small_paste_spec(), dir.path);
+    MaterialParams m;
+    m.bond.model = BondModel::flat_joint;
+    m.bond.tensile_strength_mean = 4.0e6;
+    m.bond.cohesion_mean = 8.0e6;
+    m.bond_gap_fraction = 0.5;
+    CubeTestSpec spec;
+    spec.max_settle_steps = 0;
+    CubeTestResult r;
+    World w = settled_cube_specimen(k, m, spec, r);
+    REQUIRE(w.run(20) == RunStatus::running);
+    const double n = static_cast<double>(w.particles().size());
+    const double held = static_cast<double>(w.memory_bytes());  // particles, pairs, slots, bonds, side state
+    const double estimated = estimated_specimen_bytes(n);
+    INFO("held " << held / n << " B per particle, estimated " << estimated / n);
+    CHECK(held <= estimated);
+    CHECK(held >= 0.4 * estimated);  // a stated figure, not an arbitrary bound
 }
 
 TEST_CASE("paste specimen: the cube test is bitwise the same for 1, 2 and 3 threads", "[paste][determinism]") {
