@@ -60,6 +60,9 @@ struct BondPassEnergy {
     /// A law's own pass: the acting bonds it took in its SIMD lanes and through its scalar
     /// kernel (StepProfile sums them; gradem-bench reports the share).
     std::int64_t lane_bonds = 0, scalar_bonds = 0;
+    /// Bonds released this step (they stopped acting): their pairs' contacts act from the next
+    /// step on, so the contacts phase collects its pairs again (World::compute_contacts).
+    std::int64_t releases = 0;
     BondPassEnergy& operator+=(const BondPassEnergy& o) {
         stored += o.stored;
         released += o.released;
@@ -67,6 +70,7 @@ struct BondPassEnergy {
         slip += o.slip;
         lane_bonds += o.lane_bonds;
         scalar_bonds += o.scalar_bonds;
+        releases += o.releases;
         return *this;
     }
 };

@@ -420,6 +420,7 @@ struct BlockState {
     std::vector<std::uint8_t> acted;
     std::vector<BondBreak> breaks;      ///< the scalar kernel's scratch list
     std::int64_t lanes = 0, scalars = 0;
+    std::int64_t releases = 0;          ///< joints released (no longer acting)
 
     BlockState(std::int64_t b, std::int64_t e)
         : begin(b), terms(std::make_unique_for_overwrite<Terms[]>(static_cast<std::size_t>(e - b))),
@@ -435,6 +436,7 @@ struct BlockState {
     void record(std::int64_t k, const BondStepResult& r) {
         terms[static_cast<std::size_t>(k - begin)] = {r.stored, r.released, r.damage, r.slip};
         acted[static_cast<std::size_t>(k - begin)] = 1;
+        releases += r.failure != BondState::intact;
     }
     /// Every term as the scalar pass adds them, bond by bond.
     [[nodiscard]] BondPassEnergy sum() const {
@@ -448,6 +450,7 @@ struct BlockState {
         }
         e.lane_bonds = lanes;
         e.scalar_bonds = scalars;
+        e.releases = releases;
         return e;
     }
 };

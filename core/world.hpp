@@ -147,6 +147,13 @@ private:
     /// The parallel bond's pass state in structure-of-arrays batches (core/pair_batch.hpp):
     /// current while the pair list, the bonds and their constants are unchanged; while it is,
     /// the contact shear forces and intact bonds' forces in pairs_ and bonds_ may lag behind it.
+    /// The contacts phase's pairs (compute_contacts): per block of kBlockSize pairs, the ones whose
+    /// contact law runs (no acting bond replaces it), in pair order, stored from the block's first
+    /// index on, contact_block_count_[block] of them. Collected again when the pairs or the set
+    /// of acting bonds change (a neighbour rebuild, an installation, a release).
+    std::vector<std::int32_t> contact_pairs_;
+    std::vector<std::int32_t> contact_block_count_;
+    bool contact_pairs_stale_ = true;
     std::vector<PairBatch> pair_batches_;
     bool pair_batches_current_ = false;
     bool records_behind_batches_ = false;
@@ -187,6 +194,7 @@ private:
     [[nodiscard]] bool needs_rebuild() const;
     void evaluate_forces(double increment_dt, class Stopwatch& clock);
     void compute_contacts(double dt, double& strain, double& slip);
+    std::int32_t collect_contact_pairs(std::int64_t begin, std::int64_t end);
     using BondEnergy = BondPassEnergy;
     BondEnergy compute_bonds(double dt);
     void refresh_bond_constants();

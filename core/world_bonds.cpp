@@ -48,6 +48,7 @@ std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
     }
     write_back_pair_batches();  // the contact shear forces, which the new bonds keep
     pair_batches_current_ = false;
+    contact_pairs_stale_ = true;
     bond_params_ = *first;
     bond_family_params_ = family_params;
     std::vector<ParticlePair> found;
@@ -166,6 +167,7 @@ World::BondEnergy World::compute_bonds_with(double dt) {
             PairOutput& out = pair_out_[static_cast<std::size_t>(b.slot)];
             if (r.failure != BondState::intact) {
                 released_bond_output(out, replaces);
+                ++e.releases;
                 continue;
             }
             bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, replaces, s.xb - s.xa);

@@ -22,6 +22,7 @@ bool World::needs_rebuild() const {
 void World::rebuild_neighbors() {
     write_back_pair_batches();  // the pair list changes: the batches' state back into the records first
     pair_batches_current_ = false;
+    contact_pairs_stale_ = true;
     std::vector<ParticlePair> found;
     search_->find_pairs(particles_.position, particles_.radius, skin_, found);
     merge_pairs(found);

@@ -475,7 +475,11 @@ struct World::ParallelBondPass {
             contact_strain += bo.contact_strain;
             contact_slip += bo.contact_slip;
             w.breaks_.insert(w.breaks_.end(), bo.breaks.begin(), bo.breaks.end());
-            for (const Released& x : bo.released) bond_partial[static_cast<std::size_t>(x.bond / kBlockSize)].released += x.energy;
+            for (const Released& x : bo.released) {
+                BondEnergy& e = bond_partial[static_cast<std::size_t>(x.bond / kBlockSize)];
+                e.released += x.energy;
+                ++e.releases;
+            }
         }
         strain = contact_strain;
         slip = contact_slip;

@@ -106,6 +106,7 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
         compute_contacts(increment_dt, e.contact_strain, contact_slip);
         profile_.contacts += clock.lap();
         bond = compute_bonds(increment_dt);
+        if (bond.releases > 0) contact_pairs_stale_ = true;  // their contacts act from the next step
     }
     profile_.bond_lane_steps += bond.lane_bonds;
     profile_.bond_scalar_steps += bond.scalar_bonds;
@@ -120,24 +121,50 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
     last_eval_ = e;
 }
 
-// Phase 2: linear contact law for every Verlet pair, one output slot each. A pair whose acting
-// bond replaces the contact (BondParams::replaces_contact) is skipped: its bond is its only
-// spring until it is released, and the bond phase, which runs after this one, sets its slot (zero
-// in the step it is released: bond_output() in core/bond_pass.hpp), so a bond broken this step
-// lets the contact act from the next step on. Skipping those pairs saves their particle loads and
-// slot stores: 1.10-1.16x on the flat joint's step (bench/README.md).
+// The pairs of block [begin, end) whose contact law runs, into contact_pairs_ from index begin
+// on, in pair order; returns their count. A pair whose acting bond replaces the contact
+// (BondParams::replaces_contact) is left out, its contact shear force set to +0: its bond is its
+// only spring until it is released, and the bond phase sets its slot (bond_output() in
+// core/bond_pass.hpp).
+std::int32_t World::collect_contact_pairs(std::int64_t begin, std::int64_t end) {
+    const bool bond_replaces = bond_params_.bond_replaces_contact();
+    std::int32_t* out = contact_pairs_.data() + begin;
+    std::int32_t n = 0;
+    for (std::int64_t k = begin; k < end; ++k) {
+        Pair& p = pairs_[static_cast<std::size_t>(k)];
+        if (bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)])) {
+            zero_shear(p.shear_force);
+            continue;
+        }
+        out[n++] = static_cast<std::int32_t>(k);
+    }
+    return n;
+}
+
+// Phase 2: linear contact law for every Verlet pair but those whose acting bond replaces the
+// contact (collect_contact_pairs), one output slot each. The bond phase, which runs after this
+// one, sets the skipped pairs' slots (zero in the step a bond is released), and a release
+// has the pairs collected again, so a bond broken this step lets its contact act from the next
+// step on. Skipping those pairs saves their particle loads and slot stores (1.10-1.16x on the
+// flat joint's step), and keeping the list saves reading every pair's record and bond
+// (136 bytes per pair and step) to find them (bench/README.md).
 void World::compute_contacts(double dt, double& strain, double& slip) {
     const auto m = static_cast<std::int64_t>(pairs_.size());
-    const bool bond_replaces = bond_params_.bond_replaces_contact();
+    const bool collect = contact_pairs_stale_;
+    if (collect) {
+        contact_pairs_.resize(static_cast<std::size_t>(m));
+        contact_block_count_.resize(static_cast<std::size_t>(block_count(m)));
+        contact_pairs_stale_ = false;
+    }
     std::vector<EnergyPair> partial(static_cast<std::size_t>(block_count(m)));
     for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+        auto& count = contact_block_count_[static_cast<std::size_t>(blk)];
+        if (collect) count = collect_contact_pairs(begin, end);
         EnergyPair e;
-        for (std::int64_t k = begin; k < end; ++k) {
+        const std::int32_t* listed = contact_pairs_.data() + begin;
+        for (std::int32_t n = 0; n < count; ++n) {
+            const std::int64_t k = listed[n];
             Pair& p = pairs_[static_cast<std::size_t>(k)];
-            if (bond_replaces && p.bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(p.bond)])) {
-                zero_shear(p.shear_force);  // the bond owns the slot (bond_output): no particle loads, no slot write
-                continue;
-            }
             const auto i = static_cast<std::size_t>(p.i), j = static_cast<std::size_t>(p.j);
             const Vec3 xa = particles_.position[i], xb = particles_.position[j];
             const double ra = particles_.radius[i], rb = particles_.radius[j];

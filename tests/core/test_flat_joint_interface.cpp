@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bond_rig.hpp"
+#include "core/contact_law.hpp"
 #include "core/flat_joint_law.hpp"
 
 using namespace gradem;
@@ -281,7 +282,7 @@ TEST_CASE("flat joint: a gapped joint carries nothing until its initial gap clos
 // A joint broken in tension stays an interface while the pair is within the installation
 // reach: closed again it carries compression (ρ k_n A δ, ρ the unbonded elements' share of
 // k_n); once every element is open and the surfaces are beyond the reach it is released (no
-// longer acting).
+// longer acting), and its pair's linear contact acts again when they touch.
 TEST_CASE("flat joint: a joint broken in tension recloses in compression, and is released once its "
           "surfaces separate beyond the installation reach", "[core][flat_joint]") {
     for (const double rho : {1.0, 0.25}) {
@@ -316,6 +317,14 @@ TEST_CASE("flat joint: a joint broken in tension recloses in compression, and is
         CHECK(gap_at_release < reach + 10 * per_step * 1.01);
         CHECK(rig.bond().interface == 0);
         CHECK(rig.bond().state == BondState::broken_tension);
+        // Pushed back into overlap: the pair's linear contact acts again, k_n |δ| on each side.
+        rig.set_motion({-10 * per_step / rig.dt, 0, 0}, {});
+        while (rig.rest_distance + rig.opening() > 2.0 * kRigRadius - 1.0e-7) rig.world.step();
+        const double overlap = 2.0 * kRigRadius - (rig.rest_distance + rig.opening());
+        const double kn = contact_normal_stiffness(kRigModulus, kRigRadius, kRigRadius);
+        CHECK_FALSE(bond_acts(rig.bond()));
+        CHECK(rig.world.particles().force[1].x == Approx(kn * overlap).epsilon(1e-9));
+        CHECK(rig.world.particles().force[0].x == Approx(-kn * overlap).epsilon(1e-9));
     }
 }
 

@@ -2,11 +2,13 @@
 // tension traces the elastic line, then the softening line of slope -ζ k_n, and breaks where the
 // softened stress reaches γ σ_c; the energy dissipated is the area under the curve,
 // G Ā = σ_c²/(2 k_n) [1 + (1-γ²)/ζ] Ā. Unloading and reloading follow the damaged secant;
-// compression never damages; pure bending starts softening at β k_n R θ = σ_c.
+// compression never damages; pure bending starts softening at β k_n R θ = σ_c. A broken bond
+// leaves its pair to the linear contact.
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "bond_rig.hpp"
+#include "core/contact_law.hpp"
 #include "core/soft_bond_law.hpp"
 
 using namespace gradem;
@@ -75,6 +77,14 @@ TEST_CASE("soft bond in tension: elastic line, softening slope -zeta k_n, break 
     CHECK(e.bond_damage > 0.0);
     CHECK(e.bond_damage + e.bond_break == Approx(fracture).epsilon(2e-4));
     CHECK(e.strain_bond == 0.0);
+    // The broken bond no longer replaces its pair's contact: pushed into overlap, the pair
+    // carries the linear contact's k_n |δ| on each side.
+    rig.set_motion({-100 * per_step / rig.dt, 0, 0}, {});
+    while (rig.rest_distance + rig.opening() > 2.0 * kRigRadius - 1.0e-7) rig.world.step();
+    const double overlap = 2.0 * kRigRadius - (rig.rest_distance + rig.opening());
+    const double contact_kn = contact_normal_stiffness(kRigModulus, kRigRadius, kRigRadius);
+    CHECK(rig.world.particles().force[1].x == Approx(contact_kn * overlap).epsilon(1e-9));
+    CHECK(rig.world.particles().force[0].x == Approx(-contact_kn * overlap).epsilon(1e-9));
 }
 
 TEST_CASE("soft bond: unload and reload on the damaged secant, compression undamaged",
