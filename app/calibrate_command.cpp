@@ -89,7 +89,8 @@ int calibrate_and_report(const cal::CalibrationProblem& problem, const cal::Cube
     return common::exit_success;
 }
 
-/// --plan: the cost of the calibration, on stdout (JSON with --json); nothing is run or written.
+/// --plan: the cost of the calibration, on stdout (JSON with --json); no run, no output (the
+/// packings it times on are made and cached where none is: calibrate/plan.hpp).
 int print_plan(const cal::CalibrationProblem& problem) {
     const Console& con = console();
     if (!con.json()) std::fprintf(con.notes(), "calibrate: planning (engine timing on the specimens)\n");

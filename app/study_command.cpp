@@ -60,7 +60,8 @@ int study_and_report(const cal::StudyConfig& config, const cal::StudyExecution* 
     return common::exit_success;
 }
 
-/// --plan: the cost of the study, on stdout (JSON with --json); nothing is run or written.
+/// --plan: the cost of the study, on stdout (JSON with --json); no run, no output (the
+/// packings it times on are made and cached where none is: calibrate/plan.hpp).
 int print_plan(const cal::StudyConfig& config) {
     const Console& con = console();
     if (!con.json()) std::fprintf(con.notes(), "study: planning (the kind's cases on the stand-in, engine timing on the specimens)\n");

@@ -21,7 +21,6 @@
 #include "experiments/specimen/grain_sampler.hpp"
 #include "experiments/specimen/packing_cache.hpp"
 #include "experiments/paste/paste_cache.hpp"
-#include "experiments/specimen/quick_packing.hpp"
 #include "experiments/config/tension_config.hpp"
 
 namespace gradem::cal {
@@ -52,24 +51,18 @@ std::optional<exp::Packing> cached_packing(const lab::GradationCurve& curve, con
     return spec.paste ? exp::load_or_generate_paste(curve, spec, cache_dir) : exp::load_packing(path, key);
 }
 
-/// A stand-in specimen for the engine timing when genesis has not run: a quick packing with as
-/// many grains as genesis would sample, over the same radius range.
-exp::Packing quick_stand_in(const exp::GrainSample& grains, double density) {
-    const auto [lo, hi] = std::minmax_element(grains.diameters.begin(), grains.diameters.end());
-    exp::QuickPackingSpec q;
-    q.target_count = static_cast<std::int64_t>(grains.diameters.size());
-    q.max_radius = 0.5 * *hi;
-    q.radius_ratio = std::clamp(*hi / *lo, 1.0, 3.0);
-    q.density = density;
-    const exp::QuickPacking quick = exp::make_quick_packing(q);
-    exp::Packing p;
-    p.density = density;
-    for (std::size_t i = 0; i < quick.particles.size(); ++i) {
-        p.position.push_back(quick.particles.position[i]);
-        p.radius.push_back(quick.particles.radius[i]);
-    }
-    p.box_lo = {0, 0, 0};
-    p.box_hi = {quick.edge, quick.edge, quick.edge};
+/// The packing of (curve, spec) made by genesis and cached, for the engine timing of a set none
+/// of whose packings is cached: the run then reads it from the cache. Genesis on every core, as
+/// the run's preparation makes it (the same bits for any thread count); its wall time [s] into
+/// `seconds`.
+exp::Packing make_packing(const lab::GradationCurve& curve, const exp::SpecimenSpec& spec,
+                          const std::filesystem::path& cache_dir, double& seconds) {
+    const auto start = Clock::now();
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(omp_get_num_procs());
+    exp::Packing p = spec.paste ? exp::load_or_generate_paste(curve, spec, cache_dir) : exp::load_or_generate(curve, spec, cache_dir);
+    omp_set_num_threads(threads);
+    seconds = seconds_since(start);
     return p;
 }
 
@@ -184,9 +177,14 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     RunCostPlan cost{.sand = problem.sands[s], .set = set.name};
     std::optional<exp::Packing> timed;
     const std::vector<std::uint64_t>& seeds = set.seeds.of(s);
-    for (std::uint64_t seed : seeds) {
+    const std::size_t first = specimens.size();
+    auto spec_of = [&](std::uint64_t seed) {
         exp::SpecimenSpec spec = config.specimen;
         spec.seed = seed;
+        return spec;
+    };
+    for (std::uint64_t seed : seeds) {
+        const exp::SpecimenSpec spec = spec_of(seed);
         SpecimenPlan sp{.sand = cost.sand, .set = set.name, .seed = seed, .packing_key = exp::packing_key(curve, spec)};
         if (auto p = cached_packing(curve, spec, config.cache_dir)) {
             sp.cached = true;
@@ -198,14 +196,18 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
                 exp::sample_grains(curve, spec.size_rule, spec.genesis.target_solid_fraction * edge * edge * edge, seed);
             sp.particles = static_cast<std::int64_t>(grains.diameters.size());
             sp.genesis_max_steps = spec.genesis.max_steps;
-            if (!timed && seed == seeds.back()) {
-                timed = quick_stand_in(grains, spec.genesis.density);
-                cost.timed_on_packing = false;
-            }
         }
-        cost.particles += static_cast<double>(sp.particles) / static_cast<double>(seeds.size());
         specimens.push_back(sp);
     }
+    if (!timed) {  // none of the set's packings is cached: its first seed's made now, for the timing
+        SpecimenPlan& sp = specimens[first];
+        timed = make_packing(curve, spec_of(sp.seed), config.cache_dir, sp.genesis_s);
+        sp.cached = true;
+        sp.genesis_max_steps = 0;
+        sp.particles = static_cast<std::int64_t>(timed->radius.size());
+    }
+    for (std::size_t k = first; k < specimens.size(); ++k)
+        cost.particles += static_cast<double>(specimens[k].particles) / static_cast<double>(seeds.size());
     const Probe probe = probe_engine(*timed, material, config.test, probe_seconds);
     cost.time_step_s = probe.time_step;
     cost.seconds_per_particle_step = probe.seconds_per_particle_step;
@@ -233,9 +235,22 @@ RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens&
     return cost;
 }
 
+namespace {
+
+/// Genesis' wall time per grain [s] measured on the packing the plan made for this sand and set,
+/// or 0 when it made none (the set's timing ran on a cached packing).
+double measured_genesis_per_grain(const PlanCost& cost, const SpecimenPlan& of) {
+    for (const SpecimenPlan& sp : cost.specimens)
+        if (sp.sand == of.sand && sp.set == of.set && sp.genesis_s > 0.0 && sp.particles > 0)
+            return sp.genesis_s / static_cast<double>(sp.particles);
+    return 0.0;
+}
+
+}  // namespace
+
 void add_totals(PlanCost& cost) {
     const int parallel = std::max(1, std::min(cost.workers, cost.cores));
-    double wall = 0.0, steps = 0.0, genesis = 0.0;
+    double wall = 0.0, steps = 0.0, bound = 0.0, estimate = 0.0;
     for (const RunCostPlan& r : cost.runs) {
         wall += r.seconds();
         steps += r.particles * (r.compression_runs * r.compression_steps + r.tension_runs * r.tension_steps);
@@ -244,15 +259,20 @@ void add_totals(PlanCost& cost) {
     for (const SpecimenPlan& sp : cost.specimens) {
         if (sp.cached || std::find(made.begin(), made.end(), sp.packing_key) != made.end()) continue;
         made.push_back(sp.packing_key);
+        if (const double per_grain = measured_genesis_per_grain(cost, sp); per_grain > 0.0) {
+            estimate += per_grain * static_cast<double>(sp.particles);
+            continue;
+        }
         for (const RunCostPlan& r : cost.runs)
             if (r.sand == sp.sand && r.set == sp.set) {
-                genesis += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
+                bound += static_cast<double>(sp.particles) * static_cast<double>(sp.genesis_max_steps) * r.seconds_per_particle_step;
                 break;
             }
     }
     cost.run_particle_steps = steps;
     cost.run_wall_s = wall / parallel;
-    cost.genesis_wall_max_s = genesis / parallel;
+    cost.genesis_wall_s = estimate;
+    cost.genesis_wall_max_s = bound / parallel;
 }
 
 double RunCostPlan::seconds() const {
@@ -381,17 +401,20 @@ std::string cost_text(const PlanCost& cost) {
     std::ostringstream o;
     for (const SpecimenPlan& s : cost.specimens)
         o << "specimen " << s.sand << " (" << s.set << "), seed " << s.seed << ": " << s.particles << " grains"
-          << (s.cached ? " (cached)" : " (genesis first, at most " + std::to_string(s.genesis_max_steps) + " steps)") << "\n";
+          << (s.genesis_s > 0.0 ? " (made now for the engine timing: genesis " + common::clock_text(s.genesis_s) + ", cached for the run)"
+              : s.cached      ? " (cached)"
+                              : " (genesis first, at most " + std::to_string(s.genesis_max_steps) + " steps)")
+          << "\n";
     for (const RunCostPlan& r : cost.runs) {
         o << "run " << r.sand << " (" << r.set << "): " << r.compression_runs << " compression x "
           << static_cast<long long>(std::llround(r.compression_steps)) << " steps";
         if (r.tension_runs) o << ", " << r.tension_runs << " tension x " << static_cast<long long>(std::llround(r.tension_steps)) << " steps";
-        o << "; time step " << r.time_step_s << " s, " << r.seconds_per_particle_step * 1e9 << " ns per particle-step"
-          << (r.timed_on_packing ? "" : " (timed on a quick packing: genesis has not run)") << "\n";
+        o << "; time step " << r.time_step_s << " s, " << r.seconds_per_particle_step * 1e9 << " ns per particle-step\n";
     }
     o << "particle-steps: " << cost.run_particle_steps << "\n";
     o << "estimated wall time: " << common::clock_text(cost.run_wall_s) << " on " << std::min(cost.workers, cost.cores) << " of "
       << cost.workers << " workers (" << cost.cores << " cores)";
+    if (cost.genesis_wall_s > 0.0) o << ", plus genesis about " << common::clock_text(cost.genesis_wall_s);
     if (cost.genesis_wall_max_s > 0.0) o << ", plus genesis at most " << common::clock_text(cost.genesis_wall_max_s);
     o << "\n";
     for (const std::string& a : cost.assumptions) o << "assumed: " << a << "\n";
@@ -403,12 +426,13 @@ void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost) {
     j["cores"] = cost.cores;
     j["particle_steps"] = cost.run_particle_steps;
     j["wall_s"] = cost.run_wall_s;
+    j["genesis_wall_s"] = cost.genesis_wall_s;
     j["genesis_wall_max_s"] = cost.genesis_wall_max_s;
     j["specimens"] = nlohmann::ordered_json::array();
     j["runs"] = nlohmann::ordered_json::array();
     for (const SpecimenPlan& s : cost.specimens)
         j["specimens"].push_back({{"sand", s.sand}, {"set", s.set}, {"seed", s.seed}, {"particles", s.particles},
-                                  {"cached", s.cached}, {"genesis_max_steps", s.genesis_max_steps}});
+                                  {"cached", s.cached}, {"genesis_max_steps", s.genesis_max_steps}, {"genesis_s", s.genesis_s}});
     for (const RunCostPlan& r : cost.runs)
         j["runs"].push_back({{"sand", r.sand},
                              {"set", r.set},
@@ -421,8 +445,7 @@ void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost) {
                              {"compression_runs", r.compression_runs},
                              {"compression_steps", r.compression_steps},
                              {"tension_runs", r.tension_runs},
-                             {"tension_steps", r.tension_steps},
-                             {"timed_on_packing", r.timed_on_packing}});
+                             {"tension_steps", r.tension_steps}});
     j["assumptions"] = cost.assumptions;
 }
 

@@ -5,8 +5,10 @@
 //      validation, in-memory ledger: about a second) gives the number of evaluations and
 //      distinct runs; the budget is their upper bound;
 //   2. specimens: each packing from the cache, or, when genesis has not run yet, the number of
-//      grains genesis would sample (and genesis' step budget as its cost bound);
-//   3. engine timing: the first seed of each sand and specimen set bonded with the start
+//      grains genesis would sample (and genesis' step budget as its cost bound); where none of
+//      a sand's packings of a set is cached, its first seed's is made (and cached: the run
+//      reads it) for the timing;
+//   3. engine timing: a cached packing of each sand and specimen set bonded with the start
 //      material and cycled for a few seconds on one thread (what a worker runs): seconds per
 //      particle-step (the median 100-step batch), the time step and the settling steps;
 //   4. steps per run: settling + the platen travel to the end strain at the test's rate over
@@ -14,7 +16,9 @@
 //      × σ_lab/E_lab (core/law_parameters.hpp), or, for a law without that row, at
 //      kEndOverPeakStrain × the lab's strain at peak; direct tension at
 //      the law's PlatenTestCost::tension_end_over_expected × its expected peak strain;
-//   5. wall time: Σ particle-steps × seconds per particle-step over min(workers, cores).
+//   5. wall time: Σ particle-steps × seconds per particle-step over min(workers, cores); the
+//      genesis still to run at the pace of the packings made in step 2 (or bounded by its step
+//      budget where the plan made none).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,6 +43,7 @@ struct SpecimenPlan {
     std::int64_t particles = 0;      ///< the cached packing's, or genesis' sampled count
     bool cached = false;             ///< false: genesis runs first
     std::int64_t genesis_max_steps = 0;  ///< genesis' step budget (0 when cached)
+    double genesis_s = 0.0;          ///< > 0: made by the plan for its engine timing, genesis' wall time [s]
     std::uint64_t packing_key = 0;   ///< exp::packing_key of the specimen (the same packing planned twice is made once)
 };
 
@@ -54,7 +59,6 @@ struct RunCostPlan {
     double compression_steps = 0.0;      ///< settling + loading
     double tension_steps = 0.0;          ///< 0 when no tension test runs
     int compression_runs = 0, tension_runs = 0;  ///< of this sand and set in the plan
-    bool timed_on_packing = true;        ///< false: timed on a quick packing (genesis not run)
     [[nodiscard]] double seconds() const;  ///< of all its runs, one thread
 };
 
@@ -66,7 +70,11 @@ struct PlanCost {
     std::vector<RunCostPlan> runs;
     double run_particle_steps = 0.0;     ///< Σ over the planned runs
     double run_wall_s = 0.0;             ///< estimated wall time of the runs [s]
-    double genesis_wall_max_s = 0.0;     ///< upper bound of the genesis still to run [s]
+    /// The genesis still to run [s]: of the sets the plan made a packing of, at the pace it made it
+    /// (its seconds per grain, on every core); of the others, an upper bound (genesis' step
+    /// budget at the probe's cost per particle-step, over min(workers, cores)).
+    double genesis_wall_s = 0.0;
+    double genesis_wall_max_s = 0.0;
     std::vector<std::string> assumptions;
 };
 
@@ -130,7 +138,7 @@ struct RunCounts {
 
 /// Steps 2-4 above for sand `s` of `problem` on `set` at `material`: the set's packings (cached
 /// or to be made, appended to `specimens`) and the cost of `counts` runs, from `probe_seconds` of
-/// engine timing on the first packing (or a quick stand-in when genesis has not run).
+/// engine timing on the first cached packing (the first seed's, made now, when none is cached).
 RunCostPlan plan_runs(const CalibrationProblem& problem, const PlannedSpecimens& set, std::size_t s,
                       const exp::MaterialParams& material, RunCounts counts, double probe_seconds,
                       std::vector<SpecimenPlan>& specimens);
@@ -145,7 +153,7 @@ void add_totals(PlanCost& cost);
 std::string test_cost_assumption(BondModel model);
 
 /// The specimen, run, wall-time and assumption lines of a plan, for people; the same as keys of
-/// `j` (workers, cores, particle_steps, wall_s, genesis_wall_max_s, specimens, runs,
+/// `j` (workers, cores, particle_steps, wall_s, genesis_wall_s, genesis_wall_max_s, specimens, runs,
 /// assumptions), for programs.
 std::string cost_text(const PlanCost& cost);
 void add_cost_json(nlohmann::ordered_json& j, const PlanCost& cost);

@@ -201,21 +201,24 @@ TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the
     const fs::path toml = dir.path / "problem.toml";
     test::write_text(toml, "[calibration]\nbase = \"base.toml\"\nsands = [\"Van Buren\"]\nseeds = [1, 2]\n"
                            "[targets]\nlab_results = \"lab_results.json\"\n[solver]\nmax_runs = 8\n"
-                           "[validation]\nseeds = [11]\n[output]\ndir = \"out\"\n");
+                           "[validation]\nseeds = [11, 12]\n[output]\ndir = \"out\"\n");
     const cal::CalibrationProblem problem = cal::load_calibration_problem(toml);
     const cal::CalibrationPlan plan = cal::plan_calibration(problem, 0.5);
     CHECK_FALSE(fs::exists(dir.path / "out"));
 
-    // The fit's packings are cached: their own grain counts. The validation seed is not: the
-    // count genesis will sample, and no packing is made for it.
-    REQUIRE(plan.specimens.size() == 3);
+    // The fit's packings are cached: their own grain counts. The validation's are not: the
+    // plan makes its first seed's for the engine timing (cached, so the run reads it), and
+    // counts the grains genesis will sample for the other.
+    REQUIRE(plan.specimens.size() == 4);
     const lab::GradationCurve curve = exp::load_gradation(cube);
     for (const cal::SpecimenPlan& s : plan.specimens) {
         exp::SpecimenSpec spec = cube.specimen;
         spec.seed = s.seed;
         const fs::path cached = exp::packing_cache_path(cube.cache_dir, exp::packing_key(curve, spec));
         INFO(s.set << " seed " << s.seed);
-        CHECK(s.cached == (s.set == "fit"));
+        const bool made = s.set == "validation" && s.seed == 11;
+        CHECK(s.cached == (s.set == "fit" || made));
+        CHECK((s.genesis_s > 0.0) == made);
         CHECK(fs::exists(cached) == s.cached);
         if (s.cached) CHECK(s.particles == static_cast<std::int64_t>(exp::load_packing(cached, exp::packing_key(curve, spec)).radius.size()));
     }
@@ -227,7 +230,6 @@ TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the
     REQUIRE(plan.runs.size() == 2);
     const cal::RunCostPlan& fit = plan.runs.front();
     CHECK(fit.set == "fit");
-    CHECK(fit.timed_on_packing);
     CHECK(fit.compression_runs + plan.runs.back().compression_runs == plan.expected_runs + plan.validation_runs);
     exp::CubeTestSpec spec = cube.test;
     exp::SpecimenSpec seed1 = cube.specimen;
@@ -240,17 +242,23 @@ TEST_CASE("plan: a DEM problem's specimens, time step and steps are those of the
     CHECK(std::fabs(fit.compression_steps / steps - 1.0) < 0.30);
     CHECK(fit.seconds_per_particle_step > 0.0);
     CHECK(plan.run_wall_s > 0.0);
-    CHECK(plan.genesis_wall_max_s > 0.0);  // the validation packing still needs genesis
+    // The other validation packing still needs genesis, priced at the pace of the one made.
+    CHECK(plan.genesis_wall_max_s == 0.0);
+    CHECK(plan.genesis_wall_s == Approx(plan.specimens[2].genesis_s * static_cast<double>(unseen.particles) /
+                                        static_cast<double>(plan.specimens[2].particles)));
 
     // What --plan prints: the same numbers for people and for programs.
     const nlohmann::json j = nlohmann::json::parse(cal::plan_json(plan));
     CHECK(j["expected_runs"] == plan.expected_runs);
     CHECK(j["runs"].size() == 2);
-    CHECK(j["specimens"][2]["cached"] == false);
+    CHECK(j["specimens"][2]["cached"] == true);
+    CHECK(j["specimens"][2]["genesis_s"].get<double>() > 0.0);
+    CHECK(j["specimens"][3]["cached"] == false);
     CHECK(j["wall_s"].get<double>() == plan.run_wall_s);
     const std::string text = cal::plan_text(plan);
     CHECK(text.find("estimated wall time") != std::string::npos);
     CHECK(text.find("Van Buren (validation), seed 11") != std::string::npos);
+    CHECK(text.find("made now for the engine timing") != std::string::npos);
 }
 
 TEST_CASE("plan: a flat joint's runs are priced with its law's PlatenTestCost", "[calibrate][plan]") {
