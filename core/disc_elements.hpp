@@ -24,6 +24,8 @@
 // points by angle addition, no sin/cos call) are computed once per disc and step
 // (ZeroLineCache), the element's own edge directions are tabulated (cos0, sin0, cos1, sin1),
 // and the element table itself is built once per layout (disc_element_table).
+// Portability: atan2 and acos are core/portable_math.hpp's, the same bits on every machine
+// (the C library's differ in the last bit between its processor-specific variants).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/portable_math.hpp"
 #include "core/vec3.hpp"
 
 namespace gradem {
@@ -61,7 +64,7 @@ inline double sector_reach(const DiscElement& g, double a0, double a1) {
     double reach = 0.0;
     for (double r : {g.r0, g.r1})
         for (double a : {a0, a1}) reach = std::max(reach, std::hypot(r * std::cos(a) - g.y, r * std::sin(a) - g.z));
-    double opposite = std::atan2(-g.z, -g.y);
+    double opposite = portable_atan2(-g.z, -g.y);
     while (opposite < a0) opposite += 2.0 * kPi;
     if (opposite <= a1) reach = std::max(reach, g.r1 + std::hypot(g.y, g.z));
     return reach;
@@ -138,7 +141,7 @@ inline GapField gap_field(double gamma, double wy, double wz) {
     f.wz = wz;
     f.slope = std::sqrt(wy * wy + wz * wz);
     if (f.slope > 0.0) {
-        f.phi = std::atan2(wz, wy);
+        f.phi = portable_atan2(wz, wy);
         f.cphi = wy / f.slope;
         f.sphi = wz / f.slope;
     }
@@ -166,7 +169,7 @@ inline ArcCrossing arc_crossing(const GapField& f, double r) {
         a.beta = c >= 1.0 ? -1.0 : 4.0;
         return a;
     }
-    a.beta = std::acos(c);
+    a.beta = portable_acos(c);
     a.cut = true;
     const double sb = std::sqrt((1.0 - c) * (1.0 + c));
     a.angle[0] = f.phi - a.beta;
