@@ -159,6 +159,9 @@ private:
         // A bond that replaces its contact counts the larger of the two springs in the time step
         // (core/bond_law.hpp add_pair_time_step_stiffness; before, their sum): such runs changed.
         if (base_.material.bond.bond_replaces_contact()) f << "; replacing bond's step v2";
+        // The flat joint's zero line by core/portable_math.hpp's atan2 and acos (before, the C
+        // library's, whose bits depend on the processor): its runs changed.
+        if (base_.material.bond.model == BondModel::flat_joint) f << "; flat joint's zero line v2";
         for (const auto& curve : curves_) {
             exp::SpecimenSpec spec = base_.specimen;
             spec.seed = 0;  // seeds are part of each run key

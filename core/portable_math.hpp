@@ -7,16 +7,18 @@
 // a different load curve. The flat joint's disc elements (core/disc_elements.hpp) call these.
 //
 // Method (built with -ffp-contract=off, no reassociation: the same operations everywhere):
-//   atan a, a in [0, 1]: the nearest table point c = k/8 (k = 0..8) and the addition formula
-//     atan a = atan c + atan u,   u = (a - c) / (1 + a c),   |u| <= 1/16,
+//   atan a, a = num/den in [0, 1]: the nearest table point c = k/8 (k = 0..8, found by
+//   comparisons) and the addition formula, with one division,
+//     atan a = atan c + atan u,   u = (a - c) / (1 + a c) = (num - c den) / (den + c num),   |u| <= 1/16,
 //   atan c tabulated as a double-double (hi + lo, from a 60-digit evaluation), atan u by its
-//   Taylor series to u^13 (the first term left out, u^15/15, is under 1e-18 of u);
+//   Taylor series to u^13 (the first term left out, u^15/15, is under 1e-18 of u), evaluated by
+//   Estrin's scheme;
 //   atan2 y/x by the octant: a = min(|x|,|y|)/max(|x|,|y|), the angle t, π/2 - t, π/2 + t or
 //   π - t (the constant as hi + lo), the sign of y;
 //   acos c = atan2(sqrt((1 - c)(1 + c)), c), accurate near c = ±1 (1 - c and 1 + c exact there).
-// Accuracy: within 2 ulp of the correctly rounded value, 0.09 ulp on average for atan2 and
-// 0.17 for acos (tests/core/test_portable_math.cpp, against the long double functions); the C
-// library's are within 1. Arguments: finite; NaN gives NaN.
+// Accuracy: atan2 within 1 ulp of the correctly rounded value (0.08 ulp on average), acos within
+// 2 (0.16 on average) (tests/core/test_portable_math.cpp, against the long double functions);
+// the C library's are within 1. Arguments: finite; NaN gives NaN.
 #include <cmath>
 
 namespace gradem {
@@ -46,19 +48,20 @@ inline constexpr double kAtanLo[9] = {0x0.0p+0,
 inline constexpr double kPiHi = 0x1.921fb54442d18p+1, kPiLo = 0x1.1a62633145c07p-53;          // π
 inline constexpr double kHalfPiHi = 0x1.921fb54442d18p+0, kHalfPiLo = 0x1.1a62633145c07p-54;  // π/2
 
-/// atan a for a in [0, 1] [rad].
-inline double atan_unit(double a) {
-    const int k = static_cast<int>(a * 8.0 + 0.5);  // the nearest k/8
+/// atan(num/den) for 0 <= num <= den, den > 0 finite [rad]. One division: the table point
+/// k/8 nearest num/den is counted by comparisons (16 num >= (2j+1) den, j = 0..7), and
+/// u = (num - c den)/(den + c num) is the reduced argument (a - c)/(1 + a c) with a = num/den.
+inline double atan_ratio(double num, double den) {
+    const double n16 = 16.0 * num;
+    const int k = (n16 >= den) + (n16 >= 3.0 * den) + (n16 >= 5.0 * den) + (n16 >= 7.0 * den) + (n16 >= 9.0 * den) +
+                  (n16 >= 11.0 * den) + (n16 >= 13.0 * den) + (n16 >= 15.0 * den);
     const double c = 0.125 * k;
-    const double u = (a - c) / (1.0 + a * c);
-    const double u2 = u * u;
-    // atan u - u = u^3 (-1/3 + u^2 (1/5 + u^2 (-1/7 + u^2 (1/9 + u^2 (-1/11 + u^2 / 13)))))
-    double p = 1.0 / 13.0;
-    p = -1.0 / 11.0 + u2 * p;
-    p = 1.0 / 9.0 + u2 * p;
-    p = -1.0 / 7.0 + u2 * p;
-    p = 1.0 / 5.0 + u2 * p;
-    p = -1.0 / 3.0 + u2 * p;
+    const double u = (num - c * den) / (den + c * num);
+    const double u2 = u * u, u4 = u2 * u2;
+    // atan u - u = u^3 p, p = -1/3 + u^2/5 - u^4/7 + u^6/9 - u^8/11 + u^10/13 (Estrin's scheme:
+    // the pairs side by side, a short chain of dependent operations)
+    const double p = (-1.0 / 3.0 + u2 * (1.0 / 5.0)) +
+                     u4 * ((-1.0 / 7.0 + u2 * (1.0 / 9.0)) + u4 * (-1.0 / 11.0 + u2 * (1.0 / 13.0)));
     return kAtanHi[k] + (u + (kAtanLo[k] + u * u2 * p));
 }
 
@@ -69,10 +72,10 @@ inline double atan_unit(double a) {
 inline double portable_atan2(double y, double x) {
     using namespace portable_math_detail;
     const double ax = std::fabs(x), ay = std::fabs(y);
+    if (std::isnan(x) || std::isnan(y) || (std::isinf(x) && std::isinf(y))) return (x - x) + (y - y);  // NaN
     const bool steep = ay > ax;  // above the diagonal: the angle from the y axis
-    const double a = steep ? ax / ay : (ax > 0.0 ? ay / ax : 0.0);
-    if (std::isnan(x) || std::isnan(y) || !(a <= 1.0)) return (x - x) + (y - y);  // NaN (inf/inf too)
-    const double t = atan_unit(a);
+    const double num = steep ? ax : ay, den = steep ? ay : ax;
+    const double t = (num == 0.0 || std::isinf(den)) ? 0.0 : atan_ratio(num, den);
     double r;                                   // the angle of (|x| or -|x|, |y|), by octant:
     if (!steep) r = std::signbit(x) ? kPiHi + (kPiLo - t) : t;     // π - t, or t
     else r = kHalfPiHi + (std::signbit(x) ? kHalfPiLo + t : kHalfPiLo - t);  // π/2 + t, or π/2 - t
