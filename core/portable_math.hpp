@@ -74,7 +74,10 @@ inline double portable_atan2(double y, double x) {
     const double ax = std::fabs(x), ay = std::fabs(y);
     if (std::isnan(x) || std::isnan(y) || (std::isinf(x) && std::isinf(y))) return (x - x) + (y - y);  // NaN
     const bool steep = ay > ax;  // above the diagonal: the angle from the y axis
-    const double num = steep ? ax : ay, den = steep ? ay : ax;
+    double num = steep ? ax : ay, den = steep ? ay : ax;
+    // scaled by a power of two (exact): 15 den and den + c num stay finite, c den keeps its bits
+    if (den > 0x1p1000) num *= 0x1p-64, den *= 0x1p-64;
+    else if (den < 0x1p-900) num *= 0x1p900, den *= 0x1p900;
     const double t = (num == 0.0 || std::isinf(den)) ? 0.0 : atan_ratio(num, den);
     double r;                                   // the angle of (|x| or -|x|, |y|), by octant:
     if (!steep) r = std::signbit(x) ? kPiHi + (kPiLo - t) : t;     // π - t, or t

@@ -63,6 +63,15 @@ TEST_CASE("portable_atan2: within 1 ulp over every octant, and at the table poin
     }
     CHECK(worst_table <= 1.0);
     CHECK(portable_atan2(1.0, 1.0) == reference_atan2(1.0, 1.0));  // π/4: the table's last point
+    // near the largest doubles (scaled down before 15 x the larger one would overflow) and the
+    // smallest (subnormal) ones
+    for (double big : {0x1p1000, 1e307, std::numeric_limits<double>::max()})
+        for (double ratio : {0.0, 0.01, 0.3, 0.5, 0.77, 1.0}) {
+            CHECK(ulps(portable_atan2(ratio * big, big), reference_atan2(ratio * big, big)) <= 1.0);
+            CHECK(ulps(portable_atan2(-big, ratio * big), reference_atan2(-big, ratio * big)) <= 1.0);
+        }
+    const double tiny = std::numeric_limits<double>::denorm_min();
+    CHECK(ulps(portable_atan2(3.0 * tiny, 7.0 * tiny), reference_atan2(3.0 * tiny, 7.0 * tiny)) <= 1.0);
 }
 
 TEST_CASE("portable_atan2: signed zeros, axes, infinities and NaN as std::atan2", "[core][math]") {
