@@ -169,9 +169,9 @@ inline ArcCrossing arc_crossing(const GapField& f, double r) {
         a.beta = c >= 1.0 ? -1.0 : 4.0;
         return a;
     }
-    a.beta = portable_acos(c);
+    const double sb = std::sqrt((1.0 - c) * (1.0 + c));  // sin β
+    a.beta = portable_atan2(sb, c);  // portable_acos(c), with its sine computed once
     a.cut = true;
-    const double sb = std::sqrt((1.0 - c) * (1.0 + c));
     a.angle[0] = f.phi - a.beta;
     a.angle[1] = f.phi + a.beta;
     a.cos[0] = f.cphi * c + f.sphi * sb;
