@@ -23,7 +23,9 @@
 // Speed: the zero line's direction (one atan2) and each arc's crossings (one acos, the crossing
 // points by angle addition, no sin/cos call) are computed once per disc and step
 // (ZeroLineCache), the element's own edge directions are tabulated (cos0, sin0, cos1, sin1),
-// and the element table itself is built once per layout (disc_element_table).
+// and the element table itself is built once per layout (disc_element_table). The flat joint's
+// pass runs compressed_part() through its branch-free copy (core/disc_elements_branchless.hpp),
+// vectorised across the elements of many joints; the two give the same bits.
 // Portability: atan2 and acos are core/portable_math.hpp's, the same bits on every machine
 // (the C library's differ in the last bit between its processor-specific variants).
 #include <algorithm>
@@ -309,6 +311,16 @@ inline void add_piece(AreaMoments& m, const DiscElement& g, const GapField& f, c
     }
 }
 
+/// F = γ M0 + w.M1, P = γ M1 + M2 w, U = γ F + w.P from the compressed region's area moments.
+inline CompressedPart part_of_moments(const GapField& f, const AreaMoments& m) {
+    CompressedPart out;
+    out.force = f.gamma * m.m0 + f.wy * m.my + f.wz * m.mz;
+    out.py = f.gamma * m.my + f.wy * m.myy + f.wz * m.myz;
+    out.pz = f.gamma * m.mz + f.wy * m.myz + f.wz * m.mzz;
+    out.energy = f.gamma * out.force + f.wy * out.py + f.wz * out.pz;
+    return out;
+}
+
 }  // namespace detail
 
 /// The compressed part of element g under the gap field f, given the crossings of its inner and
@@ -320,12 +332,7 @@ inline CompressedPart compressed_part(const DiscElement& g, const GapField& f, c
     const detail::AngularCuts cuts = detail::angular_cuts(g, f, inner, outer);
     detail::AreaMoments m;
     for (int k = 0; k + 1 < cuts.count; ++k) detail::add_piece(m, g, f, inner, outer, cuts.at[k], cuts.at[k + 1]);
-    CompressedPart out;
-    out.force = f.gamma * m.m0 + f.wy * m.my + f.wz * m.mz;
-    out.py = f.gamma * m.my + f.wy * m.myy + f.wz * m.myz;
-    out.pz = f.gamma * m.mz + f.wy * m.myz + f.wz * m.mzz;
-    out.energy = f.gamma * out.force + f.wy * out.py + f.wz * out.pz;
-    return out;
+    return detail::part_of_moments(f, m);
 }
 
 }  // namespace gradem

@@ -4,10 +4,11 @@
 // no element of a joint breaks, so the law is a fixed sequence of arithmetic per element, the
 // same for every joint up to selects, and runs across joints in structure-of-arrays lanes:
 //   1. a scalar scan over each block of bonds copies the inputs of every acting joint into lanes
-//      (particle state, the joint's header and element shear forces, its constants): the fully
-//      bonded joints into one set of kJointLanes lanes, the others (partly bonded, slit, gapped,
-//      broken; with their elements' bonded flags) into a second, the mixed set; a set runs
-//      whenever it is full, so its lanes are full but for the block's last;
+//      (the joint's header and element shear forces, its constants): the fully bonded joints into
+//      one set of kJointLanes lanes, the others (partly bonded, slit, gapped, broken; with their
+//      elements' bonded flags) into a second, the mixed set; a set runs whenever it is full, so its
+//      lanes are full but for the block's last, and its particles' state is copied in just before
+//      (four lanes at a time by transposes where the processor has AVX2: core/lane_load.hpp);
 //   2. loops over every lane of a set (a fixed trip count, so no scalar epilogue: the lanes past the
 //      set's joints hold harmless dummies) run the pair kinematics and the frame, then each element
 //      (element loop outside, lanes inside: one vector operation serves a vector's worth of joints;
@@ -15,9 +16,10 @@
 //      then the resultant — compiled for AVX-512, AVX2 and the baseline ISA (function
 //      multiversioning, picked at load time). For the mixed set the element loop is split: the normal
 //      load of every element (bonded: linear with its failure test; unbonded: linear if closed over
-//      its whole extent, nil if open), the elements the zero line cuts one joint at a time
-//      (unbonded_normal's closed form), then the shear with the Coulomb cap and the sums in element
-//      order;
+//      its whole extent, nil if open), the elements the zero line cuts (gathered from
+//      all the set's joints into one list and run through unbonded_normal's closed form written
+//      without branches, core/disc_elements_branchless.hpp, vectorised across the list), then the
+//      shear with the Coulomb cap and the sums in element order;
 //   3. the lanes whose elements all held are written back, and every other joint (an element
 //      that breaks this step, a separated joint to release: its lane result is discarded, its
 //      state is still the old one) runs through FlatJointLaw::step as the generic bond phase
@@ -34,7 +36,9 @@
 #include <utility>
 
 #include "core/bond_pass.hpp"
+#include "core/disc_elements_branchless.hpp"
 #include "core/flat_joint_law.hpp"
+#include "core/lane_load.hpp"
 #include "core/parallel.hpp"
 
 namespace gradem {
@@ -80,6 +84,48 @@ inline void set_lane(double (&a)[3][kJointLanes], int l, const Vec3& v) {
     a[0][l] = v.x;
     a[1][l] = v.y;
     a[2][l] = v.z;
+}
+
+/// The particles of lanes [0, count): positions, velocities and spins of both ends, one double
+/// at a time, from lane `first` on.
+inline void load_particles_scalar(JointLanes& L, const ParticleSet& particles, const std::int32_t* ia,
+                                  const std::int32_t* ib, int first, int count) {
+    for (int l = first; l < count; ++l) {
+        const auto i = static_cast<std::size_t>(ia[l]), j = static_cast<std::size_t>(ib[l]);
+        set_lane(L.xa, l, particles.position[i]);
+        set_lane(L.xb, l, particles.position[j]);
+        set_lane(L.va, l, particles.velocity[i]);
+        set_lane(L.vb, l, particles.velocity[j]);
+        set_lane(L.wa, l, particles.spin[i]);
+        set_lane(L.wb, l, particles.spin[j]);
+    }
+}
+
+#ifdef GRADEM_LANE_TRANSPOSE
+/// The same copy by transposes, four lanes at a time (core/lane_load.hpp), the lanes past the
+/// last multiple of four one double at a time: the same bits.
+__attribute__((target("avx2"))) void load_particles_transposed(JointLanes& L, const ParticleSet& particles,
+                                                               const std::int32_t* ia, const std::int32_t* ib, int count) {
+    int l0 = 0;
+    for (; l0 + 4 <= count; l0 += 4) {
+        transposed_lanes4(&L.xa[0][l0], &L.xa[1][l0], &L.xa[2][l0], particles.position.data(), &ia[l0]);
+        transposed_lanes4(&L.xb[0][l0], &L.xb[1][l0], &L.xb[2][l0], particles.position.data(), &ib[l0]);
+        transposed_lanes4(&L.va[0][l0], &L.va[1][l0], &L.va[2][l0], particles.velocity.data(), &ia[l0]);
+        transposed_lanes4(&L.vb[0][l0], &L.vb[1][l0], &L.vb[2][l0], particles.velocity.data(), &ib[l0]);
+        transposed_lanes4(&L.wa[0][l0], &L.wa[1][l0], &L.wa[2][l0], particles.spin.data(), &ia[l0]);
+        transposed_lanes4(&L.wb[0][l0], &L.wb[1][l0], &L.wb[2][l0], particles.spin.data(), &ib[l0]);
+    }
+    load_particles_scalar(L, particles, ia, ib, l0, count);
+}
+#endif
+
+/// The particles of a set's lanes [0, count) (the lanes past it keep their dummies).
+inline void load_particles(JointLanes& L, const ParticleSet& particles, const std::int32_t* ia, const std::int32_t* ib,
+                           int count) {
+#ifdef GRADEM_LANE_TRANSPOSE
+    if (lane_transpose_available()) return load_particles_transposed(L, particles, ia, ib, count);
+#endif
+    load_particles_scalar(L, particles, ia, ib, 0, count);
 }
 
 /// Loop 1: kinematics, the carried frame and the step constants of every lane.
@@ -185,26 +231,96 @@ __attribute__((always_inline)) inline void mixed_normal(JointLanes& L, std::size
     }
 }
 
-/// Loop 2b, one lane at a time: the normal load of the elements cut by the zero line, over their
-/// compressed part (unbonded_normal, the joint's zero line made once for its cut elements).
-inline void cut_elements(JointLanes& L, std::span<const DiscElement> elements) {
+/// The elements of a set's lanes that the zero line cuts, one (lane, element) item each, with
+/// what the closed form needs (structure of arrays), and their loads.
+struct CutItems {
+    /// The list is padded to a multiple of this, so the vector loop (8 doubles with AVX-512, 4 with
+    /// AVX2) never reaches its scalar epilogue, which runs the closed form's every path one item at a time.
+    static constexpr int kChunk = 8;
+    static constexpr int kMax = kJointLanes * static_cast<int>(kMaxLaneElements);
+    static_assert(kMax % kChunk == 0);
+    int count = 0;
+    std::int32_t lane[kMax], element[kMax];
+    double gamma[kMax], wy[kMax], wz[kMax];  ///< the joint's gap field: γ [m], R̄ w [m]
+    double kn[kMax], R[kMax];                ///< ρ k̄_n [Pa/m], R̄ [m]
+    double r0[kMax], r1[kMax], a0[kMax], a1[kMax], cos0[kMax], sin0[kMax], cos1[kMax], sin1[kMax];
+    double fn[kMax], p1[kMax], p2[kMax], energy[kMax];  ///< the element's NormalLoad
+};
+
+/// Loop 2b, part 1, one lane at a time: every cut element of the lanes that hold (no element
+/// failed) as an item, with its joint's gap field as unbonded_normal() makes it.
+inline void collect_cuts(CutItems& C, const JointLanes& L, std::span<const DiscElement> elements) {
     using namespace flat_detail;
+    C.count = 0;
     for (int l = 0; l < L.count; ++l) {
         if (L.any_cut[l] == 0.0 || L.fails[l] != 0.0) continue;
         JointFrame f;
         JointStep js;
         lane_frame(L, l, f, js);
-        ZeroLineCache zero_line;
         for (std::size_t e = 0; e < elements.size(); ++e) {
             if (L.el_cut[e][l] == 0.0) continue;
-            const ElementTrial t = element_trial(elements[e], f, js, L.shear[e][0][l], L.shear[e][1][l]);
-            const NormalLoad load = unbonded_normal(elements[e], f, js.kn * L.unbonded_kn[l], js.R, L.gap0[l] + t.opening,
-                                                    L.gap0[l] + f.normal, zero_line);
-            L.el_fn[e][l] = load.fn;
-            L.el_p1[e][l] = load.p1;
-            L.el_p2[e][l] = load.p2;
-            L.el_energy[e][l] = load.energy;
+            const int n = C.count++;
+            const DiscElement& g = elements[e];
+            C.lane[n] = l;
+            C.element[n] = static_cast<std::int32_t>(e);
+            C.gamma[n] = L.gap0[l] + f.normal;
+            C.wy[n] = js.R * f.wy;
+            C.wz[n] = js.R * f.wz;
+            C.kn[n] = js.kn * L.unbonded_kn[l];
+            C.R[n] = js.R;
+            C.r0[n] = g.r0, C.r1[n] = g.r1, C.a0[n] = g.a0, C.a1[n] = g.a1;
+            C.cos0[n] = g.cos0, C.sin0[n] = g.sin0, C.cos1[n] = g.cos1, C.sin1[n] = g.sin1;
         }
+    }
+}
+
+/// The items after the last up to a whole chunk: copies of the first item's inputs (finite; their
+/// results are never read).
+inline int pad_to_chunks(CutItems& C) {
+    int n = C.count;
+    for (; n % CutItems::kChunk != 0; ++n) {
+        C.gamma[n] = C.gamma[0], C.wy[n] = C.wy[0], C.wz[n] = C.wz[0], C.kn[n] = C.kn[0], C.R[n] = C.R[0];
+        C.r0[n] = C.r0[0], C.r1[n] = C.r1[0], C.a0[n] = C.a0[0], C.a1[n] = C.a1[0];
+        C.cos0[n] = C.cos0[0], C.sin0[n] = C.sin0[0], C.cos1[n] = C.cos1[0], C.sin1[n] = C.sin1[0];
+    }
+    return n;
+}
+
+/// Loop 2b, part 2, across items: each cut element's normal load over its compressed part,
+/// unbonded_normal()'s closed form without branches (core/disc_elements_branchless.hpp), the
+/// same bits.
+template <bool InnerKinks>
+__attribute__((always_inline)) inline void cut_loads(CutItems& C, int padded) {
+    const int chunks = padded / CutItems::kChunk;
+#pragma GCC ivdep
+    for (int n = 0; n < chunks * CutItems::kChunk; ++n) {
+        const SectorBounds g{C.r0[n], C.r1[n], C.a0[n], C.a1[n], C.cos0[n], C.sin0[n], C.cos1[n], C.sin1[n]};
+        const CompressedPart c = compressed_part_branchless<InnerKinks>(g, C.gamma[n], C.wy[n], C.wz[n]);
+        const double R = C.R[n], knR2 = C.kn[n] * R * R;
+        C.fn[n] = knR2 * c.force;
+        C.p1[n] = knR2 * R * c.py;
+        C.p2[n] = knR2 * R * c.pz;
+        C.energy[n] = 0.5 * knR2 * c.energy;
+    }
+}
+
+/// Loop 2b: the normal load of the elements cut by the zero line, over their compressed part
+/// (unbonded_normal), into their lanes.
+inline void cut_elements(JointLanes& L, std::span<const DiscElement> elements) {
+    CutItems C;
+    collect_cuts(C, L, elements);
+    if (C.count == 0) return;
+    const int padded = pad_to_chunks(C);
+    const bool inner_kinks = std::any_of(elements.begin(), elements.end(), [](const DiscElement& g) { return g.r0 > 0.0; });
+    if (inner_kinks) cut_loads<true>(C, padded);
+    else cut_loads<false>(C, padded);
+    for (int n = 0; n < C.count; ++n) {
+        const auto e = static_cast<std::size_t>(C.element[n]);
+        const int l = C.lane[n];
+        L.el_fn[e][l] = C.fn[n];
+        L.el_p1[e][l] = C.p1[n];
+        L.el_p2[e][l] = C.p2[n];
+        L.el_energy[e][l] = C.energy[n];
     }
 }
 
@@ -506,6 +622,7 @@ struct FlatJointPass {
     struct LaneSet {
         JointLanes lanes;
         std::int64_t bond[kJointLanes];
+        std::int32_t ia[kJointLanes], ib[kJointLanes];  ///< the lane's particles, copied in at flush()
         bool mixed;
         void start(bool holds_mixed) {
             mixed = holds_mixed;
@@ -525,6 +642,8 @@ struct FlatJointPass {
         LaneSet& set = fully_bonded ? bonded : mixed;
         const int l = set.lanes.count++;
         set.bond[l] = k;
+        set.ia[l] = b.i;
+        set.ib[l] = b.j;
         load_joint(set.lanes, l, k, b);
         if (!fully_bonded) load_interface(set.lanes, l, k, b);
         if (set.lanes.count == kJointLanes) flush(set, st, blk);
@@ -535,6 +654,7 @@ struct FlatJointPass {
     void flush(LaneSet& set, BlockState& st, std::int64_t blk) {
         JointLanes& L = set.lanes;
         if (L.count == 0) return;
+        load_particles(L, pass.particles, set.ia, set.ib, L.count);
         if (set.mixed) mixed_joint_lanes(L, dt, elements);
         else joint_lanes(L, dt, elements);
         for (int l = 0; l < L.count; ++l) {
@@ -568,18 +688,13 @@ struct FlatJointPass {
         __builtin_prefetch(&pass.constants[ka]);
     }
 
-    /// Lane l: joint k's particles, its header and element shear forces, its constants.
+    /// Lane l: joint k's radii, its header and element shear forces, its constants (its
+    /// particles' vectors are copied in at flush()).
     __attribute__((always_inline)) inline void load_joint(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
         using namespace flat_side;
         const ParticleSet& particles = pass.particles;
         const double* side = side_data + static_cast<std::size_t>(k) * stride;
         const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-        set_lane(L.xa, l, particles.position[i]);
-        set_lane(L.xb, l, particles.position[j]);
-        set_lane(L.va, l, particles.velocity[i]);
-        set_lane(L.vb, l, particles.velocity[j]);
-        set_lane(L.wa, l, particles.spin[i]);
-        set_lane(L.wb, l, particles.spin[j]);
         L.ra[l] = particles.radius[i];
         L.rb[l] = particles.radius[j];
         set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});

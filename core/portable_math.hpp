@@ -65,6 +65,25 @@ inline double atan_ratio(double num, double den) {
     return kAtanHi[k] + (u + (kAtanLo[k] + u * u2 * p));
 }
 
+/// atan_ratio with the table point chosen by selects (the thresholds grow with k, so the last one
+/// met is the count of those met): the same bits, and a loop over lanes that calls it vectorises.
+inline double atan_ratio_branchless(double num, double den) {
+    const double n16 = 16.0 * num;
+    double hi = kAtanHi[0], lo = kAtanLo[0], c = 0.0;
+#pragma GCC unroll 8
+    for (int k = 1; k <= 8; ++k) {
+        const bool above = n16 >= (2 * k - 1) * den;
+        hi = above ? kAtanHi[k] : hi;
+        lo = above ? kAtanLo[k] : lo;
+        c = above ? 0.125 * k : c;
+    }
+    const double u = (num - c * den) / (den + c * num);
+    const double u2 = u * u, u4 = u2 * u2;
+    const double p = (-1.0 / 3.0 + u2 * (1.0 / 5.0)) +
+                     u4 * ((-1.0 / 7.0 + u2 * (1.0 / 9.0)) + u4 * (-1.0 / 11.0 + u2 * (1.0 / 13.0)));
+    return hi + (u + (lo + u * u2 * p));
+}
+
 }  // namespace portable_math_detail
 
 /// atan2(y, x) in [-π, π] [rad], as std::atan2 for finite arguments (signed zeros included:
@@ -86,6 +105,30 @@ inline double portable_atan2(double y, double x) {
 }
 
 /// acos(c) in [0, π] [rad] for c in [-1, 1]; NaN outside.
+/// portable_atan2 with selects for its branches (every path computed, one kept), so that a loop
+/// over lanes that calls it vectorises: the same operations on the kept path, the same bits for
+/// every argument (tests/core/test_portable_math.cpp).
+inline double portable_atan2_branchless(double y, double x) {
+    using namespace portable_math_detail;
+    const double ax = std::fabs(x), ay = std::fabs(y);
+    const bool steep = ay > ax;
+    const double den0 = steep ? ay : ax;
+    const double scale = den0 > 0x1p1000 ? 0x1p-64 : (den0 < 0x1p-900 ? 0x1p900 : 1.0);  // x 1: exact
+    const double num = (steep ? ax : ay) * scale, den = den0 * scale;
+    const double ratio = atan_ratio_branchless(num, den);
+    const double t = ((num == 0.0) | std::isinf(den)) ? 0.0 : ratio;
+    const bool negative_x = std::copysign(1.0, x) < 0.0;  // std::signbit(x)
+    const double flat = negative_x ? kPiHi + (kPiLo - t) : t;
+    const double tall = kHalfPiHi + (negative_x ? kHalfPiLo + t : kHalfPiLo - t);
+    const double r = std::copysign(steep ? tall : flat, y);
+    // NaN where either is NaN or both are infinite, as two selects: one select on the three
+    // tests keeps GCC 12 from vectorising the loops that call this
+    const bool nan_argument = std::isnan(x) | std::isnan(y);
+    const bool both_infinite = std::isinf(x) & std::isinf(y);
+    const double r_or_nan = nan_argument ? (x - x) + (y - y) : r;
+    return both_infinite ? (x - x) + (y - y) : r_or_nan;
+}
+
 inline double portable_acos(double c) {
     if (!(c >= -1.0 && c <= 1.0)) return (c - c) / (c - c);  // NaN (an infinity too)
     return portable_atan2(std::sqrt((1.0 - c) * (1.0 + c)), c);
