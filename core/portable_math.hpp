@@ -19,6 +19,8 @@
 // Accuracy: atan2 within 1 ulp of the correctly rounded value (0.08 ulp on average), acos within
 // 2 (0.16 on average) (tests/core/test_portable_math.cpp, against the long double functions);
 // the C library's are within 1. Arguments: finite; NaN gives NaN.
+// portable_atan2_branchless is the same function with selects for branches (the same bits), for
+// loops over lanes that must vectorise (core/disc_elements_branchless.hpp).
 #include <cmath>
 
 namespace gradem {
@@ -104,10 +106,9 @@ inline double portable_atan2(double y, double x) {
     return std::copysign(r, y);
 }
 
-/// acos(c) in [0, π] [rad] for c in [-1, 1]; NaN outside.
 /// portable_atan2 with selects for its branches (every path computed, one kept), so that a loop
 /// over lanes that calls it vectorises: the same operations on the kept path, the same bits for
-/// every argument (tests/core/test_portable_math.cpp).
+/// every argument (tests/core/test_disc_elements_branchless.cpp).
 inline double portable_atan2_branchless(double y, double x) {
     using namespace portable_math_detail;
     const double ax = std::fabs(x), ay = std::fabs(y);
@@ -129,6 +130,7 @@ inline double portable_atan2_branchless(double y, double x) {
     return both_infinite ? (x - x) + (y - y) : r_or_nan;
 }
 
+/// acos(c) in [0, π] [rad] for c in [-1, 1]; NaN outside.
 inline double portable_acos(double c) {
     if (!(c >= -1.0 && c <= 1.0)) return (c - c) / (c - c);  // NaN (an infinity too)
     return portable_atan2(std::sqrt((1.0 - c) * (1.0 + c)), c);
