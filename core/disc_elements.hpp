@@ -136,12 +136,17 @@ struct GapField {
     double slope = 0;                    ///< |w| [m]
     double phi = 0, cphi = 1, sphi = 0;  ///< φ [rad] in [-π, π], cos φ, sin φ
 };
-inline GapField gap_field(double gamma, double wy, double wz) {
+/// γ, w and |w|; the direction as for a level field (φ 0), for the caller to set when |w| > 0.
+inline GapField unoriented_gap_field(double gamma, double wy, double wz) {
     GapField f;
     f.gamma = gamma;
     f.wy = wy;
     f.wz = wz;
     f.slope = std::sqrt(wy * wy + wz * wz);
+    return f;
+}
+inline GapField gap_field(double gamma, double wy, double wz) {
+    GapField f = unoriented_gap_field(gamma, wy, wz);
     if (f.slope > 0.0) {
         f.phi = portable_atan2(wz, wy);
         f.cphi = wy / f.slope;

@@ -38,11 +38,7 @@ using detail::PieceEnd;
 
 /// gap_field().
 inline GapField gap_field(double gamma, double wy, double wz) {
-    GapField f;
-    f.gamma = gamma;
-    f.wy = wy;
-    f.wz = wz;
-    f.slope = std::sqrt(wy * wy + wz * wz);
+    GapField f = unoriented_gap_field(gamma, wy, wz);
     const bool tilted = f.slope > 0.0;
     const double phi = portable_atan2_branchless(wz, wy);
     const double cphi = wy / f.slope, sphi = wz / f.slope;
