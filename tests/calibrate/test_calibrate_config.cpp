@@ -215,7 +215,7 @@ TEST_CASE("the shipped calibration configs load, with their documented defaults"
                 CHECK(p.tension_seeds == std::vector<std::uint64_t>{1});
                 CHECK(p.tension_runs_per_test({0, 1}) == 2);
                 CHECK(p.base.test.loading.stop_fraction == 0.9);  // scripts/post_peak_recovery.py on its earlier curves
-                CHECK(p.base.test.loading.stop_strain_ratio == 1.5);
+                CHECK(p.base.test.loading.stop_strain_ratio == 1.4);
             }
         }
     }
