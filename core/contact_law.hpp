@@ -28,6 +28,13 @@ struct LinearContactResult {
     double slip_energy = 0.0;   ///< energy dissipated by slip over this step [J], >= 0
 };
 
+/// F_n = k_n max(0, -g) as linear_contact() selects it [N]: -k_n g where the pair touches
+/// (g < 0, or NaN: it computes on), else 0.
+inline double linear_contact_normal_force(double kn, double gap) {
+    const bool touching = !(gap >= 0.0);
+    return touching ? -kn * gap : 0.0;
+}
+
 /// One step of the linear law. `rotated_shear` is the stored shear force already carried into
 /// the current plane; du_shear the shear displacement increment of B relative to A.
 /// Branch-free (every term computed, the cases selected after: the loop over pairs vectorises,
@@ -47,7 +54,7 @@ inline LinearContactResult linear_contact(double kn, double ks, double friction,
     const double slip_energy = work_done_on_spring - 0.5 * (norm2(fs) - norm2(rotated_shear)) / ks;
     const double strain_energy = 0.5 * normal_force * normal_force / kn + 0.5 * norm2(fs) / ks;
     LinearContactResult out;
-    out.normal_force = touching ? normal_force : 0.0;
+    out.normal_force = linear_contact_normal_force(kn, gap);
     out.shear_force = select(touching, fs, Vec3{});
     out.sliding = touching && sliding;
     out.strain_energy = touching ? strain_energy : 0.0;

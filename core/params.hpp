@@ -92,6 +92,12 @@ struct SimParams {
     /// bonds across SIMD lanes), bitwise the same results as its scalar kernel: off only to
     /// compare the two.
     bool vectorised_bond_passes = true;
+    /// On one thread the parallel bond's pass adds each pair's force and moments to its two
+    /// particles as it goes, in pair order (the gather's order, so the same bits), instead of
+    /// writing the pair's output slot for the gather to read back: 72 bytes per pair and step
+    /// neither written nor read (bench/README.md). The slots are then rebuilt from the state when
+    /// something reads them (World::pair_outputs). Off only to compare the two.
+    bool forces_in_pass = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };
 

@@ -31,6 +31,7 @@ World::World(ParticleSet particles, const ContactParams& contact, const SimParam
 }
 
 std::int32_t World::add_wall(Wall wall) {
+    pair_outputs_current();
     require_valid(wall.contact.invalid_reason());
     const double l = norm(wall.normal);
     if (!(l > 0.0)) throw std::invalid_argument("Wall::normal = 0 violates |n| > 0");
@@ -42,6 +43,7 @@ std::int32_t World::add_wall(Wall wall) {
 }
 
 void World::remove_wall(std::int32_t index) {
+    pair_outputs_current();
     if (index < 0 || static_cast<std::size_t>(index) >= walls_.size())
         throw std::invalid_argument("World::remove_wall: no wall " + std::to_string(index));
     walls_.erase(walls_.begin() + index);
@@ -51,6 +53,7 @@ void World::remove_wall(std::int32_t index) {
 }
 
 void World::set_bond_stiffness(double effective_modulus, double stiffness_ratio) {
+    pair_outputs_current();
     BondParams p = bond_params_;
     p.effective_modulus = effective_modulus;
     p.stiffness_ratio = stiffness_ratio;
@@ -66,6 +69,7 @@ void World::set_bond_stiffness(double effective_modulus, double stiffness_ratio)
 }
 
 void World::set_contact_params(const ContactParams& contact) {
+    pair_outputs_current();
     require_valid(contact.invalid_reason());
     contact_ = contact;
     forces_current_ = false;
@@ -88,6 +92,7 @@ void World::set_particle_motion(std::int32_t i, const Vec3& velocity, const Vec3
 void World::scale_radii(double factor) {
     if (!(factor > 0.0 && std::isfinite(factor)))
         throw std::invalid_argument("World::scale_radii: factor = " + std::to_string(factor) + " violates > 0");
+    pair_outputs_current();
     double r_max = 0.0;
     for (std::size_t i = 0; i < particles_.size(); ++i) {
         particles_.set_radius(i, particles_.radius[i] * factor);
@@ -100,6 +105,7 @@ void World::scale_radii(double factor) {
 }
 
 ParticleSet& World::edit_particles() {
+    pair_outputs_current();
     rebuild_needed_ = true;
     bond_const_stale_ = true;
     forces_current_ = false;
@@ -207,6 +213,7 @@ std::vector<std::int32_t> World::contact_counts() const {
 }
 
 double World::unbalanced_force_ratio() const {
+    pair_outputs_current();
     double contact_sum = 0.0, unbalanced_sum = 0.0;
     std::size_t contacts = 0, free_particles = 0;
     for (const PairOutput& o : pair_out_) {

@@ -10,7 +10,9 @@
 //                    over the pairs, bitwise the same: world_pairs.cpp);
 //   4. walls       - linear contact with each platen, into per-wall-contact slots;
 //   5. gather      - each particle sums its slots in a fixed order into force/torque (a slot
-//                    carries the moment on each side: PairOutput, core/bond_pass.hpp);
+//                    carries the moment on each side: PairOutput, core/bond_pass.hpp); on one
+//                    thread the parallel bond's pass adds its pairs to the particles itself, in
+//                    that order, and the gather adds the walls (SimParams::forces_in_pass);
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
 //                    first, then forces at the new configuration, as PFC cycles).
 // Determinism: every interaction is computed once into its own slot, every particle sums its
@@ -107,6 +109,12 @@ public:
     /// PFC's mean unbalanced-force ratio: mean |resultant force| over free particles divided by
     /// the mean magnitude of the contact and bond forces (0 when nothing touches).
     [[nodiscard]] double unbalanced_force_ratio() const;
+    /// Each pair's force and moments on its particles at the latest force evaluation, in the
+    /// World's pair order (the same for any thread count): force and moment on j, moment on i.
+    [[nodiscard]] const std::vector<PairOutput>& pair_outputs() const {
+        pair_outputs_current();
+        return pair_out_;
+    }
     /// Bytes held by the particle, pair, bond and wall-contact arrays (capacity, not size).
     [[nodiscard]] std::size_t memory_bytes() const;
     /// Hash of positions, velocities, spins and bond forces (FNV-1a over the raw bits).
@@ -136,6 +144,10 @@ private:
 
     std::vector<Pair> pairs_;
     std::vector<PairOutput> pair_out_;
+    /// The latest evaluation added the pairs' forces to the particles in the pass
+    /// (SimParams::forces_in_pass) and left pair_out_ behind it: rebuilt when read.
+    bool forces_from_pass_ = false;
+    bool pair_out_stale_ = false;
     std::vector<std::int32_t> incidence_start_;
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
@@ -221,6 +233,13 @@ private:
         std::int64_t runaway = -1;  ///< a particle that moved too far or went non-finite
     };
     void gather_forces();
+    /// pair_out_ as the latest evaluation would have written it, from the pass's batches and the
+    /// positions (world_pairs.cpp); called before anything reads the slots or changes what they
+    /// are computed from.
+    void rebuild_pair_outputs();
+    void pair_outputs_current() const {
+        if (pair_out_stale_) const_cast<World*>(this)->rebuild_pair_outputs();
+    }
     IntegrationSums integrate();
     void move_walls(double& boundary_work);
     void check_divergence(const IntegrationSums& sums);

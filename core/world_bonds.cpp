@@ -46,6 +46,7 @@ std::size_t World::install_bonds(const BondFamilyTable& table, double max_gap) {
         const std::size_t own = visit_bond_law(first->model, [&](auto law) { return decltype(law)::side_size(family_params[k]); });
         if (own != stride) throw std::invalid_argument("install_bonds: bond families differ in the law's shape (side state)");
     }
+    pair_outputs_current();     // before the batches go stale
     write_back_pair_batches();  // the contact shear forces, which the new bonds keep
     pair_batches_current_ = false;
     contact_pairs_stale_ = true;

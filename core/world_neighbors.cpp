@@ -71,7 +71,8 @@ void World::merge_pairs(const std::vector<ParticlePair>& found) {
         merged.push_back(p);
     }
     pairs_.swap(merged);
-    pair_out_.assign(pairs_.size(), PairOutput{});
+    pair_out_.assign(pairs_.size(), PairOutput{});  // as the pairs are new, so are their slots: none stale
+    pair_out_stale_ = false;
 }
 
 // CSR: for each particle the pairs it belongs to, in pair order (fixed gather order).

@@ -26,11 +26,12 @@
 // multiversioning) runs the kinematics, the contact law (only if some pair of the batch
 // overlaps) and the bond law on every lane, writes the new contact and bond state back into the
 // batch, and the pair's force and moment, selected by what acts (overlap, an intact bond), into
-// a result row; a scalar loop copies the results into the pair output slots and sums the
-// energies in pair order; the breaks (rare) are handled pair by pair. Each lane does the same
-// IEEE operations in the same order as the scalar code (-ffp-contract=off: no FMA; no
-// reassociation), and a select keeps exactly the value the separate phases stored, so the
-// results are bitwise the same.
+// a result row; a scalar loop copies the results into the pair output slots (on one thread:
+// adds them to the pairs' particles, in pair order, which is each particle's gather order:
+// SimParams::forces_in_pass) and sums the energies in pair order; the breaks (rare) are handled
+// pair by pair. Each lane does the same IEEE operations in the same order as the scalar code
+// (-ffp-contract=off: no FMA; no reassociation), and a select keeps exactly the value the
+// separate phases stored, so the results are bitwise the same.
 #include <algorithm>
 #include <cstddef>
 #include <memory>
@@ -346,6 +347,9 @@ void clear_bond_lane(PairBatch& B, int l) {
 struct World::ParallelBondPass {
     World& w;
     bool track;  ///< keep bond energies (sim_.track_energy)
+    /// Add each pair's force and moments to its particles here, in pair order, instead of
+    /// writing its slot (SimParams::forces_in_pass: one thread, the blocks in order).
+    bool to_particles = false;
     bool transpose = lane_transpose_available();  ///< particles into lanes by transposes (core/lane_load.hpp)
     ParticleArrays particles;
     PassScalars scalars;
@@ -415,17 +419,22 @@ struct World::ParallelBondPass {
             __builtin_prefetch(slots + line, 1);
     }
 
-    /// The batch's results in pair order: each pair's output slot, the contact energies summed
-    /// in pair order, each holding bond's stored energy. True if a bond of the batch broke.
+    /// The batch's results in pair order: each pair's output slot (or its force and moments
+    /// added to its particles), the contact energies summed in pair order, each holding bond's
+    /// stored energy. True if a bond of the batch broke.
     __attribute__((always_inline)) inline bool write_results(std::int64_t k0, int count, const PairBatch& B,
                                                              const BatchResults& R, BlockOut& bo) {
         bool any_break = false;
         double strain_sum = bo.contact_strain, slip_sum = bo.contact_slip;
         for (int l = 0; l < count; ++l) {
-            PairOutput& out = w.pair_out_[static_cast<std::size_t>(k0 + l)];
-            out.force_j = lane(R.force, l);
-            out.torque_j = lane(R.torque, l);
-            out.torque_i = lane(R.torque_i, l);
+            if (to_particles) {
+                add_to_particles(B, R, l);
+            } else {
+                PairOutput& out = w.pair_out_[static_cast<std::size_t>(k0 + l)];
+                out.force_j = lane(R.force, l);
+                out.torque_j = lane(R.torque, l);
+                out.torque_i = lane(R.torque_i, l);
+            }
             if (R.open[l] == 0.0) {
                 strain_sum += R.contact_strain[l];
                 slip_sum += R.contact_slip[l];
@@ -441,6 +450,18 @@ struct World::ParallelBondPass {
         bo.contact_strain = strain_sum;
         bo.contact_slip = slip_sum;
         return any_break;
+    }
+
+    /// Lane l's force and moments added to its particles as World::gather_forces() adds a
+    /// slot: +1 × F and M_j to j, -1 × F and M_i to i. The pass runs in pair order, which is
+    /// every particle's gather order, so each sum takes its terms in the gather's order.
+    __attribute__((always_inline)) inline void add_to_particles(const PairBatch& B, const BatchResults& R, int l) {
+        const auto i = static_cast<std::size_t>(B.i[l]), j = static_cast<std::size_t>(B.j[l]);
+        const Vec3 f = lane(R.force, l);
+        w.particles_.force[j] += 1.0 * f;
+        w.particles_.torque[j] += lane(R.torque, l);
+        w.particles_.force[i] += -1.0 * f;
+        w.particles_.torque[i] += lane(R.torque_i, l);
     }
 
     /// Breaks (rare), in pair order = bond order: the event with the crack's geometry (the
@@ -502,13 +523,68 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     if (!pair_batches_current_) build_pair_batches();
     bond_stored_.resize(bonds_.size(), 0.0);
     ParallelBondPass pass(*this, dt);
-    const bool prefetch_streams = pass.streamed_bytes() > sim_.stream_prefetch_above_bytes;
-    for_each_block(static_cast<std::int64_t>(pairs_.size()), [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
-        if (prefetch_streams) pass.block<true>(begin, end, blk);
-        else pass.block<false>(begin, end, blk);
-    });
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    forces_from_pass_ = sim_.forces_in_pass && thread_count() == 1;
+    if (forces_from_pass_) {  // the blocks in order, each pair's outputs into its particles
+        pass.to_particles = true;
+        std::fill(particles_.force.begin(), particles_.force.end(), Vec3{});
+        std::fill(particles_.torque.begin(), particles_.torque.end(), Vec3{});
+        for (std::int64_t blk = 0; blk < block_count(m); ++blk)
+            pass.block<false>(blk * kBlockSize, std::min(m, (blk + 1) * kBlockSize), blk);
+        profile_.pair_steps_into_particles += m;
+    } else {
+        const bool prefetch_streams = pass.streamed_bytes() > sim_.stream_prefetch_above_bytes;
+        for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
+            if (prefetch_streams) pass.block<true>(begin, end, blk);
+            else pass.block<false>(begin, end, blk);
+        });
+    }
+    pair_out_stale_ = forces_from_pass_;
     records_behind_batches_ = true;
     return pass.merge(strain, slip);
+}
+
+// The slots the pass did not write (forces_from_pass_), as its kernel computes them
+// (pair_batch_body), from what it left: each pair's contact shear force and its intact bond's
+// forces and moments in the batches (a bond broken in that step is no longer in its lane), and
+// the positions the forces were evaluated at. The same functions in the same order, so the same
+// bits (tests/core/test_pair_pass.cpp). The kinematics' velocity terms are not used.
+void World::rebuild_pair_outputs() {
+    pair_out_stale_ = false;
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    const ParticleSet& P = particles_;
+    for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
+        for (std::int64_t k = begin; k < end; ++k) {
+            const PairBatch& B = pair_batches_[static_cast<std::size_t>(k / kLanes)];
+            const int l = static_cast<int>(k % kLanes);
+            const auto i = static_cast<std::size_t>(B.i[l]), j = static_cast<std::size_t>(B.j[l]);
+            const PairState s{P.position[i], P.position[j], P.velocity[i], P.velocity[j],
+                              P.spin[i],     P.spin[j],     P.radius[i],   P.radius[j]};
+            const PairKinematics kin = pair_kinematics(s, 0.0);
+            Vec3 force, torque;  // the contact's (overlap_test, lane_contact): none when open
+            if (!(norm2(s.xb - s.xa) >= (s.ra + s.rb) * (s.ra + s.rb))) {
+                const double kn = contact_normal_stiffness(contact_.effective_modulus, s.ra, s.rb);
+                const Vec3 contact_force = linear_contact_normal_force(kn, kin.gap) * kin.normal + lane(B.shear, l);
+                force = contact_force;
+                torque = cross(kin.arm_b, contact_force);
+            }
+            if (B.bond[l] >= 0) {  // the bond holds (ParallelBondLaw::advance's outputs)
+                ParallelBond bond;
+                bond.normal_force = B.normal_force[l];
+                bond.shear_force = lane(B.shear_force, l);
+                bond.twist_moment = B.twist_moment[l];
+                bond.bend_moment = lane(B.bend_moment, l);
+                const Vec3 bond_force = bond_force_on_j(bond, kin.normal);
+                const Vec3 bond_torque = cross(kin.arm_b, bond_force) + bond_moment_on_j(bond, kin.normal);
+                force = force + bond_force;
+                torque = torque + bond_torque;
+            }
+            PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
+            out.force_j = force;
+            out.torque_j = torque;
+            out.torque_i = moment_on_i(torque, force, s.xb - s.xa);
+        }
+    });
 }
 
 // The batches from the pair and bond records (pair_batch.hpp), one block of pairs per task.

@@ -103,6 +103,7 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
     if (bond_params_.model == BondModel::parallel_bond) {  // one pass (world_pairs.cpp)
         bond = compute_contacts_and_parallel_bonds(increment_dt, e.contact_strain, contact_slip);
     } else {
+        forces_from_pass_ = pair_out_stale_ = false;  // the phases below write every slot
         compute_contacts(increment_dt, e.contact_strain, contact_slip);
         profile_.contacts += clock.lap();
         bond = compute_bonds(increment_dt);

@@ -168,3 +168,86 @@ TEST_CASE("fused pair pass: its batched state is unobservable: reading the recor
     CHECK(observed.energy == plain.energy);
     CHECK(observed.breaks.size() == plain.breaks.size());
 }
+
+namespace {
+
+/// A squeezed lattice after 2500 steps: its particles' forces and moments, its pair slots as
+/// read, its unbalanced-force ratio, all as raw bits, and how many pair-steps went straight
+/// into the particles.
+struct Forces {
+    std::vector<std::uint64_t> particle_bits, slot_bits;
+    std::uint64_t ratio_bits;
+    std::int64_t into_particles;
+};
+
+void append_bits(std::vector<std::uint64_t>& out, const Vec3& v) {
+    out.push_back(bits(v.x));
+    out.push_back(bits(v.y));
+    out.push_back(bits(v.z));
+}
+
+Forces squeezed_forces(int threads, bool forces_in_pass) {
+    SimParams sim;
+    sim.forces_in_pass = forces_in_pass;
+    return with_threads(threads, [&] {
+        World world = squeezed_lattice(sim);
+        world.run(2500);
+        Forces f;
+        for (std::size_t i = 0; i < world.particles().size(); ++i) {
+            append_bits(f.particle_bits, world.particles().force[i]);
+            append_bits(f.particle_bits, world.particles().torque[i]);
+        }
+        f.ratio_bits = bits(world.unbalanced_force_ratio());
+        for (const PairOutput& o : world.pair_outputs()) {
+            append_bits(f.slot_bits, o.force_j);
+            append_bits(f.slot_bits, o.torque_j);
+            append_bits(f.slot_bits, o.torque_i);
+        }
+        f.into_particles = world.profile().pair_steps_into_particles;
+        return f;
+    });
+}
+
+}  // namespace
+
+TEST_CASE("fused pair pass: on one thread it adds the pairs' forces to the particles, and the slots rebuilt when "
+          "read are bitwise the ones two threads write",
+          "[core][pair_pass]") {
+    // SimParams::forces_in_pass: one thread sums each particle's pairs in the pass, in the
+    // gather's order, and writes no slot; reading the slots rebuilds them from the batches.
+    const Forces slots_two = squeezed_forces(2, true);
+    const Forces slots_one = squeezed_forces(1, false);
+    const Forces in_pass = squeezed_forces(1, true);
+    REQUIRE(in_pass.into_particles > 0);  // the path under test ran ...
+    REQUIRE(slots_two.into_particles == 0);  // ... and the others did not
+    REQUIRE(slots_one.into_particles == 0);
+    for (const Forces* other : {&slots_two, &slots_one}) {
+        CHECK(in_pass.particle_bits == other->particle_bits);
+        CHECK(in_pass.slot_bits == other->slot_bits);
+        CHECK(in_pass.ratio_bits == other->ratio_bits);
+    }
+    std::size_t nonzero = 0;  // the slots hold forces, not a zeroed array
+    for (std::uint64_t b : in_pass.slot_bits) nonzero += (b << 1) != 0;
+    CHECK(nonzero > in_pass.slot_bits.size() / 2);
+}
+
+TEST_CASE("fused pair pass: slots left behind by the pass are rebuilt before a set-up change, not after it",
+          "[core][pair_pass]") {
+    // After a one-thread step the slots are not written; a change of the contact law's
+    // parameters must not reach the slots of the evaluation before it.
+    auto slots_after_change = [](int threads) {
+        return with_threads(threads, [] {
+            World world = squeezed_lattice();
+            world.run(300);
+            ContactParams stiffer = world.contact_params();
+            stiffer.effective_modulus *= 2.0;
+            world.set_contact_params(stiffer);
+            std::vector<std::uint64_t> out;
+            for (const PairOutput& o : world.pair_outputs()) append_bits(out, o.force_j);
+            return out;
+        });
+    };
+    const std::vector<std::uint64_t> one = slots_after_change(1), two = slots_after_change(2);
+    REQUIRE(one.size() == two.size());
+    CHECK(one == two);
+}
