@@ -250,6 +250,7 @@ Sample run_once(const RowCase& row, int threads, std::int64_t steps) {
     s.profile.rebuilds = after.rebuilds - before.rebuilds;
     s.profile.bond_lane_steps = after.bond_lane_steps - before.bond_lane_steps;
     s.profile.bond_scalar_steps = after.bond_scalar_steps - before.bond_scalar_steps;
+    s.profile.pair_steps_into_particles = after.pair_steps_into_particles - before.pair_steps_into_particles;
     s.world_bytes = world.memory_bytes();
     s.rss = peak_rss_bytes();
     s.pairs = static_cast<std::int64_t>(world.pair_count());
@@ -283,6 +284,9 @@ void print_sample(const Sample& s, double speedup, bool json) {
     // bond-steps of the timed steps by the path of the law's own pass (none: 0 and 0)
     const std::int64_t lane = s.profile.bond_lane_steps, scalar = s.profile.bond_scalar_steps;
     const double scalar_share = lane + scalar > 0 ? static_cast<double>(scalar) / static_cast<double>(lane + scalar) : 0.0;
+    // pair-steps whose forces the parallel bond's pass added to both particles (no slot written)
+    const double pair_steps = static_cast<double>(s.pairs) * static_cast<double>(s.steps);
+    const double into_particles = pair_steps > 0 ? static_cast<double>(s.profile.pair_steps_into_particles) / pair_steps : 0.0;
     if (json) {
         std::printf("{\"model\": \"%s\", ", bond_model_name(s.bond_params.model));
         print_law_rows(s.bond_params);
@@ -293,14 +297,15 @@ void print_sample(const Sample& s, double speedup, bool json) {
                     "\"integrate_s\": %.4f, \"rebuilds\": %lld, \"bytes_per_particle\": %.1f, "
                     "\"peak_rss_bytes_per_particle\": %.1f, \"speedup_vs_1_thread\": %.3f, "
                     "\"packing\": \"%s\", \"bond_gap_um\": %.4g, "
-                    "\"bond_steps_lanes\": %lld, \"bond_steps_scalar\": %lld, \"scalar_path_share\": %.4f}\n",
+                    "\"bond_steps_lanes\": %lld, \"bond_steps_scalar\": %lld, \"scalar_path_share\": %.4f, "
+                    "\"pairs_into_particles_share\": %.4f}\n",
                     static_cast<long long>(s.n), static_cast<long long>(s.bonds),
                     static_cast<long long>(s.pairs), static_cast<long long>(s.contacts), s.threads,
                     static_cast<long long>(s.steps), s.seconds, pss, s.profile.neighbors,
                     s.profile.contacts, s.profile.bonds, s.profile.walls, s.profile.integrate,
                     static_cast<long long>(s.profile.rebuilds), static_cast<double>(s.world_bytes) / per,
                     static_cast<double>(s.rss) / per, speedup, s.row.packing, s.gap_um,
-                    static_cast<long long>(lane), static_cast<long long>(scalar), scalar_share);
+                    static_cast<long long>(lane), static_cast<long long>(scalar), scalar_share, into_particles);
         return;
     }
     char swept[32] = "-";

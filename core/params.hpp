@@ -92,11 +92,13 @@ struct SimParams {
     /// bonds across SIMD lanes), bitwise the same results as its scalar kernel: off only to
     /// compare the two.
     bool vectorised_bond_passes = true;
-    /// On one thread the parallel bond's pass adds each pair's force and moments to its two
-    /// particles as it goes, in pair order (the gather's order, so the same bits), instead of
-    /// writing the pair's output slot for the gather to read back: 72 bytes per pair and step
-    /// neither written nor read (bench/README.md). The slots are then rebuilt from the state when
-    /// something reads them (World::pair_outputs). Off only to compare the two.
+    /// The parallel bond's pass adds each pair's force and moments to those of its particles
+    /// whose pairs all lie in the same thread's share of the pass, as it goes, in pair order
+    /// (their gather's order, so the same bits), instead of writing the pair's output slot for
+    /// the gather to read back: 72 bytes per pair and step neither written nor read
+    /// (bench/README.md). Only the pairs of particles whose pairs span two shares keep their
+    /// slots (on one thread: none). The slots are rebuilt from the state when something reads
+    /// them (World::pair_outputs). Off only to compare the two.
     bool forces_in_pass = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };

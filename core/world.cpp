@@ -235,7 +235,7 @@ std::size_t World::memory_bytes() const {
     const ParticleSet& p = particles_;
     return bytes(p.position) + bytes(p.velocity) + bytes(p.spin) + bytes(p.force) +
            bytes(p.torque) + bytes(p.radius) + bytes(p.mass) + bytes(p.inertia) + bytes(p.flags) +
-           bytes(pairs_) + bytes(pair_out_) + bytes(incidence_start_) + bytes(incidence_) +
+           bytes(pairs_) + bytes(pair_out_) + bytes(incidence_start_) + bytes(incidence_) + bytes(force_owner_) +
            bytes(bonds_) + bytes(pair_batches_) + bytes(bond_side_) + bytes(bond_const_) + bytes(bond_stored_) + bytes(wall_contacts_) + bytes(wall_out_) + bytes(wall_start_) +
            bytes(position_at_rebuild_) + bytes(contact_pairs_) + bytes(contact_block_count_);
 }

@@ -10,9 +10,10 @@
 //                    over the pairs, bitwise the same: world_pairs.cpp);
 //   4. walls       - linear contact with each platen, into per-wall-contact slots;
 //   5. gather      - each particle sums its slots in a fixed order into force/torque (a slot
-//                    carries the moment on each side: PairOutput, core/bond_pass.hpp); on one
-//                    thread the parallel bond's pass adds its pairs to the particles itself, in
-//                    that order, and the gather adds the walls (SimParams::forces_in_pass);
+//                    carries the moment on each side: PairOutput, core/bond_pass.hpp); the
+//                    parallel bond's pass adds the pairs of the particles whose pairs one thread
+//                    runs to them itself, in that order, and the gather adds their walls
+//                    (SimParams::forces_in_pass);
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
 //                    first, then forces at the new configuration, as PFC cycles).
 // Determinism: every interaction is computed once into its own slot, every particle sums its
@@ -148,6 +149,13 @@ private:
     /// (SimParams::forces_in_pass) and left pair_out_ behind it: rebuilt when read.
     bool forces_from_pass_ = false;
     bool pair_out_stale_ = false;
+    /// Per particle, the thread whose share of the parallel bond's pass holds every one of its
+    /// pairs (it adds their forces to the particle in the pass), -1 where its pairs span two
+    /// shares or it has none (the gather sums its slots); built for a team of
+    /// force_owner_team_ threads (0: to build) over the pairs' blocks cut as pass_share().
+    std::vector<std::int16_t> force_owner_;
+    int force_owner_team_ = 0;
+    void build_force_owners(int team);
     std::vector<std::int32_t> incidence_start_;
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;

@@ -38,18 +38,19 @@ struct BlockSums {
 // the pass that wrote the slot: the same bits as subtracting F and M_j + d x F here).
 // Branch-free (whether the particle is a pair's i or j is a coin flip in a packing in Morton
 // order, and a branch on it mispredicted): the sign of F is a factor ±1 (exact), the moment read
-// from the side's address. When the pass has already added the pairs in this order
-// (forces_from_pass_, SimParams::forces_in_pass), the walls' outputs are added after them.
+// from the side's address. A particle whose pairs the pass has already added in this order
+// (forces_from_pass_ and a force owner: SimParams::forces_in_pass) gets only its walls' outputs
+// added after them.
 void World::gather_forces() {
     const auto n = static_cast<std::int64_t>(particles_.size());
     ParticleSet& P = particles_;
     const Incidence* const incidence = incidence_.data();
     const PairOutput* const out = pair_out_.data();
-    const bool pairs_added = forces_from_pass_;
+    const std::int16_t* const owner = forces_from_pass_ ? force_owner_.data() : nullptr;
     for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
         for (std::int64_t p = begin; p < end; ++p) {
             const auto i = static_cast<std::size_t>(p);
-            if (pairs_added) {
+            if (owner && owner[i] >= 0) {
                 for (std::int32_t w = wall_start_[i]; w < wall_start_[i + 1]; ++w) {
                     P.force[i] += wall_out_[static_cast<std::size_t>(w)].force;
                     P.torque[i] += wall_out_[static_cast<std::size_t>(w)].torque;

@@ -26,13 +26,14 @@
 // multiversioning) runs the kinematics, the contact law (only if some pair of the batch
 // overlaps) and the bond law on every lane, writes the new contact and bond state back into the
 // batch, and the pair's force and moment, selected by what acts (overlap, an intact bond), into
-// a result row; a scalar loop copies the results into the pair output slots (on one thread:
-// adds them to the pairs' particles, in pair order, which is each particle's gather order:
-// SimParams::forces_in_pass) and sums the energies in pair order; the breaks (rare) are handled
-// pair by pair. Each lane does the same IEEE operations in the same order as the scalar code
+// a result row; a scalar loop copies the results into the pair output slots (or adds them to
+// the pair's particles whose pairs all lie in this thread's share, in pair order, which is each
+// particle's gather order: SimParams::forces_in_pass) and sums the energies in pair order; the
+// breaks (rare) are handled pair by pair. Each lane does the same IEEE operations in the same order as the scalar code
 // (-ffp-contract=off: no FMA; no reassociation), and a select keeps exactly the value the
 // separate phases stored, so the results are bitwise the same.
 #include <algorithm>
+#include <utility>
 #include <cstddef>
 #include <memory>
 
@@ -316,6 +317,12 @@ inline void run_batch(PairBatch& B, BatchResults& R, const BatchParticles& P, co
     }
 }
 
+/// Thread t's share of a pass over `blocks` pair blocks run by `team` threads: blocks
+/// [first, last), contiguous, in order.
+std::pair<std::int64_t, std::int64_t> pass_share(std::int64_t blocks, int team, int t) {
+    return {blocks * t / team, blocks * (t + 1) / team};
+}
+
 /// A bond's energy released by its break [J], kept per pair block in pair order (= bond order).
 struct Released {
     std::int64_t bond;
@@ -325,6 +332,7 @@ struct Released {
 /// What one pair block hands back: its contact energies [J], break events and released energies.
 struct BlockOut {
     double contact_strain = 0, contact_slip = 0;
+    std::int64_t into_particles = 0;  ///< pairs added to both particles in the pass, no slot written
     std::vector<BreakEvent> breaks;
     std::vector<Released> released;
 };
@@ -347,9 +355,10 @@ void clear_bond_lane(PairBatch& B, int l) {
 struct World::ParallelBondPass {
     World& w;
     bool track;  ///< keep bond energies (sim_.track_energy)
-    /// Add each pair's force and moments to its particles here, in pair order, instead of
-    /// writing its slot (SimParams::forces_in_pass: one thread, the blocks in order).
-    bool to_particles = false;
+    /// The particles whose pairs a thread's share of the pass holds (World::force_owner_: that
+    /// thread's index) get each pair's force and moments added there, in pair order; a pair with
+    /// a particle of no share writes its slot (SimParams::forces_in_pass). Null: every slot.
+    const std::int16_t* owner = nullptr;
     bool transpose = lane_transpose_available();  ///< particles into lanes by transposes (core/lane_load.hpp)
     ParticleArrays particles;
     PassScalars scalars;
@@ -394,8 +403,9 @@ struct World::ParallelBondPass {
                 static_cast<int>(std::clamp<std::int64_t>(end - k0 - kLanes, 0, kLanes))};
     }
 
+    /// Pairs [begin, end), block blk, run by thread `thread` (its index in force owners).
     template <bool Prefetch>
-    void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
+    void block(std::int64_t begin, std::int64_t end, std::int64_t blk, std::int16_t thread = 0) {
         BlockOut& bo = blocks[static_cast<std::size_t>(blk)];
         auto results = std::make_unique<BatchResults>();
         auto lanes = std::make_unique<BatchParticles>();  // lanes past the end of the pairs stay finite
@@ -405,7 +415,7 @@ struct World::ParallelBondPass {
             if constexpr (Prefetch) prefetch_slots(k0 + kLanes, end);
             const bool any_overlap = load_particles(*lanes, *results, B, count, particles, ahead_of(k0, end), transpose);
             run_batch(B, *results, *lanes, scalars, any_overlap);
-            if (write_results(k0, count, B, *results, bo)) record_breaks(count, B, *results, bo);
+            if (write_results(k0, count, B, *results, bo, thread)) record_breaks(count, B, *results, bo);
         }
     }
 
@@ -423,12 +433,12 @@ struct World::ParallelBondPass {
     /// added to its particles), the contact energies summed in pair order, each holding bond's
     /// stored energy. True if a bond of the batch broke.
     __attribute__((always_inline)) inline bool write_results(std::int64_t k0, int count, const PairBatch& B,
-                                                             const BatchResults& R, BlockOut& bo) {
+                                                             const BatchResults& R, BlockOut& bo, std::int16_t thread) {
         bool any_break = false;
         double strain_sum = bo.contact_strain, slip_sum = bo.contact_slip;
         for (int l = 0; l < count; ++l) {
-            if (to_particles) {
-                add_to_particles(B, R, l);
+            if (owner && add_to_particles(B, R, l, thread)) {
+                ++bo.into_particles;
             } else {
                 PairOutput& out = w.pair_out_[static_cast<std::size_t>(k0 + l)];
                 out.force_j = lane(R.force, l);
@@ -452,16 +462,24 @@ struct World::ParallelBondPass {
         return any_break;
     }
 
-    /// Lane l's force and moments added to its particles as World::gather_forces() adds a
-    /// slot: +1 × F and M_j to j, -1 × F and M_i to i. The pass runs in pair order, which is
-    /// every particle's gather order, so each sum takes its terms in the gather's order.
-    __attribute__((always_inline)) inline void add_to_particles(const PairBatch& B, const BatchResults& R, int l) {
+    /// Lane l's force and moments added to those of its particles this thread owns, as
+    /// World::gather_forces() adds a slot: +1 × F and M_j to j, -1 × F and M_i to i. A share runs
+    /// in pair order, which is every particle's gather order, so each sum takes its terms in the
+    /// gather's order. True if both particles took them (the slot is then not needed).
+    __attribute__((always_inline)) inline bool add_to_particles(const PairBatch& B, const BatchResults& R, int l,
+                                                                std::int16_t thread) {
         const auto i = static_cast<std::size_t>(B.i[l]), j = static_cast<std::size_t>(B.j[l]);
+        const bool own_i = owner[i] == thread, own_j = owner[j] == thread;
         const Vec3 f = lane(R.force, l);
-        w.particles_.force[j] += 1.0 * f;
-        w.particles_.torque[j] += lane(R.torque, l);
-        w.particles_.force[i] += -1.0 * f;
-        w.particles_.torque[i] += lane(R.torque_i, l);
+        if (own_j) {
+            w.particles_.force[j] += 1.0 * f;
+            w.particles_.torque[j] += lane(R.torque, l);
+        }
+        if (own_i) {
+            w.particles_.force[i] += -1.0 * f;
+            w.particles_.torque[i] += lane(R.torque_i, l);
+        }
+        return own_i & own_j;
     }
 
     /// Breaks (rare), in pair order = bond order: the event with the crack's geometry (the
@@ -504,6 +522,7 @@ struct World::ParallelBondPass {
         }
         strain = contact_strain;
         slip = contact_slip;
+        for (const BlockOut& bo : blocks) w.profile_.pair_steps_into_particles += bo.into_particles;
         if (track)
             for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
                 double stored = 0;
@@ -524,14 +543,25 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     bond_stored_.resize(bonds_.size(), 0.0);
     ParallelBondPass pass(*this, dt);
     const auto m = static_cast<std::int64_t>(pairs_.size());
-    forces_from_pass_ = sim_.forces_in_pass && thread_count() == 1;
-    if (forces_from_pass_) {  // the blocks in order, each pair's outputs into its particles
-        pass.to_particles = true;
-        std::fill(particles_.force.begin(), particles_.force.end(), Vec3{});
-        std::fill(particles_.torque.begin(), particles_.torque.end(), Vec3{});
-        for (std::int64_t blk = 0; blk < block_count(m); ++blk)
-            pass.block<false>(blk * kBlockSize, std::min(m, (blk + 1) * kBlockSize), blk);
-        profile_.pair_steps_into_particles += m;
+    forces_from_pass_ = sim_.forces_in_pass;
+    if (forces_from_pass_) {  // each thread its share of the blocks, in order
+        for_each_block(static_cast<std::int64_t>(particles_.size()), [&](std::int64_t begin, std::int64_t end, std::int64_t) {
+            std::fill(particles_.force.begin() + begin, particles_.force.begin() + end, Vec3{});
+            std::fill(particles_.torque.begin() + begin, particles_.torque.begin() + end, Vec3{});
+        });
+#pragma omp parallel
+        {
+            const int team = team_size();
+            const auto t = static_cast<std::int16_t>(thread_index());
+#pragma omp single
+            {
+                if (force_owner_team_ != team) build_force_owners(team);
+                pass.owner = force_owner_.data();
+            }  // (a barrier)
+            const auto [first, last] = pass_share(block_count(m), team, t);
+            for (std::int64_t blk = first; blk < last; ++blk)
+                pass.block<false>(blk * kBlockSize, std::min(m, (blk + 1) * kBlockSize), blk, t);
+        }
     } else {
         const bool prefetch_streams = pass.streamed_bytes() > sim_.stream_prefetch_above_bytes;
         for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
@@ -542,6 +572,27 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     pair_out_stale_ = forces_from_pass_;
     records_behind_batches_ = true;
     return pass.merge(strain, slip);
+}
+
+// Each particle's force owner for a team of `team` threads: the thread whose share of the pass
+// holds both its first and its last pair (so all of them: the shares are contiguous), else -1.
+// A particle's incidence list is in pair order, so those are its list's ends.
+void World::build_force_owners(int team) {
+    const std::int64_t blocks = block_count(static_cast<std::int64_t>(pairs_.size()));
+    std::vector<std::int16_t> share_of(static_cast<std::size_t>(blocks));
+    for (int t = 0; t < team; ++t) {
+        const auto [first, last] = pass_share(blocks, team, t);
+        std::fill(share_of.begin() + first, share_of.begin() + last, static_cast<std::int16_t>(t));
+    }
+    force_owner_.assign(particles_.size(), -1);
+    for (std::size_t p = 0; p < particles_.size(); ++p) {
+        const std::int32_t begin = incidence_start_[p], end = incidence_start_[p + 1];
+        if (begin == end) continue;
+        const std::int16_t first = share_of[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(begin)].slot / kBlockSize)];
+        const std::int16_t last = share_of[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(end - 1)].slot / kBlockSize)];
+        if (first == last) force_owner_[p] = first;
+    }
+    force_owner_team_ = team;
 }
 
 // The slots the pass did not write (forces_from_pass_), as its kernel computes them

@@ -210,34 +210,44 @@ Forces squeezed_forces(int threads, bool forces_in_pass) {
 
 }  // namespace
 
-TEST_CASE("fused pair pass: on one thread it adds the pairs' forces to the particles, and the slots rebuilt when "
-          "read are bitwise the ones two threads write",
+TEST_CASE("fused pair pass: the pairs' forces added to their particles in the pass, and the slots rebuilt when "
+          "read, are bitwise those of the slots and the gather",
           "[core][pair_pass]") {
-    // SimParams::forces_in_pass: one thread sums each particle's pairs in the pass, in the
-    // gather's order, and writes no slot; reading the slots rebuilds them from the batches.
-    const Forces slots_two = squeezed_forces(2, true);
-    const Forces slots_one = squeezed_forces(1, false);
-    const Forces in_pass = squeezed_forces(1, true);
-    REQUIRE(in_pass.into_particles > 0);  // the path under test ran ...
-    REQUIRE(slots_two.into_particles == 0);  // ... and the others did not
+    // SimParams::forces_in_pass: a thread sums the pairs of the particles whose pairs all lie in
+    // its share of the pass, in the gather's order, and writes no slot for them (one thread: no
+    // slot at all); the other particles' pairs go through their slots and the gather. Reading
+    // the slots rebuilds them from the batches.
+    const Forces slots_one = squeezed_forces(1, false), slots_two = squeezed_forces(2, false);
     REQUIRE(slots_one.into_particles == 0);
-    for (const Forces* other : {&slots_two, &slots_one}) {
-        CHECK(in_pass.particle_bits == other->particle_bits);
-        CHECK(in_pass.slot_bits == other->slot_bits);
-        CHECK(in_pass.ratio_bits == other->ratio_bits);
+    REQUIRE(slots_two.into_particles == 0);
+    const Forces in_pass_one = squeezed_forces(1, true);
+    REQUIRE(in_pass_one.into_particles > 0);
+    for (int threads : {1, 2, 3}) {
+        INFO("threads " << threads);
+        const Forces in_pass = threads == 1 ? in_pass_one : squeezed_forces(threads, true);
+        REQUIRE(in_pass.into_particles > 0);  // the path under test ran ...
+        if (threads > 1) CHECK(in_pass.into_particles < in_pass_one.into_particles);  // ... beside the slots
+        for (const Forces* other : {&slots_one, &slots_two}) {
+            CHECK(in_pass.particle_bits == other->particle_bits);
+            CHECK(in_pass.slot_bits == other->slot_bits);
+            CHECK(in_pass.ratio_bits == other->ratio_bits);
+        }
     }
     std::size_t nonzero = 0;  // the slots hold forces, not a zeroed array
-    for (std::uint64_t b : in_pass.slot_bits) nonzero += (b << 1) != 0;
-    CHECK(nonzero > in_pass.slot_bits.size() / 2);
+    for (std::uint64_t b : in_pass_one.slot_bits) nonzero += (b << 1) != 0;
+    CHECK(nonzero > in_pass_one.slot_bits.size() / 2);
 }
 
 TEST_CASE("fused pair pass: slots left behind by the pass are rebuilt before a set-up change, not after it",
           "[core][pair_pass]") {
-    // After a one-thread step the slots are not written; a change of the contact law's
-    // parameters must not reach the slots of the evaluation before it.
-    auto slots_after_change = [](int threads) {
-        return with_threads(threads, [] {
-            World world = squeezed_lattice();
+    // After a step in which the pass added the forces to the particles the slots are not
+    // written; a change of the contact law's parameters must not reach the slots of the
+    // evaluation before it.
+    auto slots_after_change = [](int threads, bool forces_in_pass) {
+        SimParams sim;
+        sim.forces_in_pass = forces_in_pass;
+        return with_threads(threads, [&] {
+            World world = squeezed_lattice(sim);
             world.run(300);
             ContactParams stiffer = world.contact_params();
             stiffer.effective_modulus *= 2.0;
@@ -247,7 +257,11 @@ TEST_CASE("fused pair pass: slots left behind by the pass are rebuilt before a s
             return out;
         });
     };
-    const std::vector<std::uint64_t> one = slots_after_change(1), two = slots_after_change(2);
-    REQUIRE(one.size() == two.size());
-    CHECK(one == two);
+    const std::vector<std::uint64_t> written = slots_after_change(1, false);
+    for (int threads : {1, 2}) {
+        INFO("threads " << threads);
+        const std::vector<std::uint64_t> rebuilt = slots_after_change(threads, true);
+        REQUIRE(rebuilt.size() == written.size());
+        CHECK(rebuilt == written);
+    }
 }
