@@ -84,9 +84,10 @@ struct SimParams {
     bool track_energy = true;        ///< energy bookkeeping every step (small cost)
     double divergence_energy_factor = 10.0;  ///< diverged if E_kin > factor * energy supplied
     double divergence_energy_floor = 0.0;    ///< ... and E_kin > this [J] (round-off motion of a stress-free specimen is not a blow-up)
-    /// The pair pass prefetches its bond, constant and output streams only when its arrays
-    /// outgrow this many bytes (a last-level cache: the development machine's L3, 32 MiB). Speed
-    /// only: the results are bitwise the same either way (tests/core/test_pair_pass.cpp).
+    /// The pair pass prefetches its output slots only when its arrays outgrow this many bytes (a
+    /// last-level cache: the development machine's L3, 32 MiB) and it writes every slot
+    /// (forces_in_pass off). Speed only: the results are bitwise the same either way
+    /// (tests/core/test_pair_pass.cpp).
     std::size_t stream_prefetch_above_bytes = std::size_t{32} << 20;
     /// A law's own vectorised pass over its bonds (Law::compute_all, core/bond_pass.hpp: its
     /// bonds across SIMD lanes), bitwise the same results as its scalar kernel: off only to

@@ -16,9 +16,10 @@
 //                    (SimParams::forces_in_pass);
 //   6. integrate   - leap-frog with Cundall local damping (next step, before 1-5: motion
 //                    first, then forces at the new configuration, as PFC cycles).
-// Determinism: every interaction is computed once into its own slot, every particle sums its
-// slots in sorted order, reductions go through fixed-size blocks, so the state after N steps
-// is bitwise identical for any number of OpenMP threads. No atomics on forces.
+// Determinism: every interaction is computed once, every particle sums its interactions in
+// sorted order (from their slots, or as the pass computes them), reductions go through
+// fixed-size blocks, so the state after N steps is bitwise identical for any number of OpenMP
+// threads. No atomics on forces.
 #include <cstdint>
 #include <memory>
 #include <span>

@@ -29,13 +29,13 @@
 // a result row; a scalar loop copies the results into the pair output slots (or adds them to
 // the pair's particles whose pairs all lie in this thread's share, in pair order, which is each
 // particle's gather order: SimParams::forces_in_pass) and sums the energies in pair order; the
-// breaks (rare) are handled pair by pair. Each lane does the same IEEE operations in the same order as the scalar code
-// (-ffp-contract=off: no FMA; no reassociation), and a select keeps exactly the value the
-// separate phases stored, so the results are bitwise the same.
+// breaks (rare) are handled pair by pair. Each lane does the same IEEE operations in the same
+// order as the scalar code (-ffp-contract=off: no FMA; no reassociation), and a select keeps
+// exactly the value the separate phases stored, so the results are bitwise the same.
 #include <algorithm>
-#include <utility>
 #include <cstddef>
 #include <memory>
+#include <utility>
 
 #include "core/contact_law.hpp"
 #include "core/lane_load.hpp"
