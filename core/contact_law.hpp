@@ -28,6 +28,12 @@ struct LinearContactResult {
     double slip_energy = 0.0;   ///< energy dissipated by slip over this step [J], >= 0
 };
 
+/// Whether two spheres at centres xa, xb [m] with radii ra, rb [m] are apart: |xb - xa|² >= (ra + rb)².
+/// The contact pass's open test; the slots rebuilt after a pass must use this same expression.
+inline bool spheres_apart(const Vec3& xa, const Vec3& xb, double ra, double rb) {
+    return norm2(xb - xa) >= (ra + rb) * (ra + rb);
+}
+
 /// F_n = k_n max(0, -g) as linear_contact() selects it [N]: -k_n g where the pair touches
 /// (g < 0, or NaN: it computes on), else 0.
 inline double linear_contact_normal_force(double kn, double gap) {

@@ -115,7 +115,7 @@ __attribute__((always_inline)) inline void prefetch_ahead(const BatchAhead& ahea
 /// Whether lane l's pair is open (R.open, the separate contact phase's test); true if it overlaps.
 __attribute__((always_inline)) inline bool overlap_test(BatchResults& R, const BatchParticles& P, int l) {
     const double ra = P.ra[l], rb = P.rb[l];
-    const bool open = norm2(lane(P.xb, l) - lane(P.xa, l)) >= (ra + rb) * (ra + rb);
+    const bool open = spheres_apart(lane(P.xa, l), lane(P.xb, l), ra, rb);
     R.open[l] = open ? 1.0 : 0.0;
     return !open;
 }
@@ -613,7 +613,7 @@ void World::rebuild_pair_outputs() {
                               P.spin[i],     P.spin[j],     P.radius[i],   P.radius[j]};
             const PairKinematics kin = pair_kinematics(s, 0.0);
             Vec3 force, torque;  // the contact's (overlap_test, lane_contact): none when open
-            if (!(norm2(s.xb - s.xa) >= (s.ra + s.rb) * (s.ra + s.rb))) {
+            if (!spheres_apart(s.xa, s.xb, s.ra, s.rb)) {
                 const double kn = contact_normal_stiffness(contact_.effective_modulus, s.ra, s.rb);
                 const Vec3 contact_force = linear_contact_normal_force(kn, kin.gap) * kin.normal + lane(B.shear, l);
                 force = contact_force;

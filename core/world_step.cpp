@@ -170,9 +170,8 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
             const Vec3 xa = particles_.position[i], xb = particles_.position[j];
             const double ra = particles_.radius[i], rb = particles_.radius[j];
             PairOutput& out = pair_out_[static_cast<std::size_t>(k)];
-            const Vec3 d = xb - xa;
             // an open pair needs no look at its particles' velocities and spins
-            if (norm2(d) >= (ra + rb) * (ra + rb)) {
+            if (spheres_apart(xa, xb, ra, rb)) {
                 zero_shear(p.shear_force);
                 out = {};
                 continue;
@@ -187,7 +186,7 @@ void World::compute_contacts(double dt, double& strain, double& slip) {
             p.shear_force = r.shear_force;
             out.force_j = r.normal_force * kin.normal + r.shear_force;
             out.torque_j = cross(kin.arm_b, out.force_j);
-            set_i_side(out, d);
+            set_i_side(out, xb - xa);
             e.stored += r.strain_energy;
             e.dissipated += r.slip_energy;
         }
