@@ -284,7 +284,7 @@ void print_sample(const Sample& s, double speedup, bool json) {
     // bond-steps of the timed steps by the path of the law's own pass (none: 0 and 0)
     const std::int64_t lane = s.profile.bond_lane_steps, scalar = s.profile.bond_scalar_steps;
     const double scalar_share = lane + scalar > 0 ? static_cast<double>(scalar) / static_cast<double>(lane + scalar) : 0.0;
-    // pair-steps whose forces the parallel bond's pass added to both particles (no slot written)
+    // pair-steps whose forces the bond law's pass added to both particles (no slot written)
     const double pair_steps = static_cast<double>(s.pairs) * static_cast<double>(s.steps);
     const double into_particles = pair_steps > 0 ? static_cast<double>(s.profile.pair_steps_into_particles) / pair_steps : 0.0;
     if (json) {

@@ -8,6 +8,7 @@
 // order, energies summed per block in bond order (so any thread count gives the same bits).
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/bond_law.hpp"
@@ -44,6 +45,21 @@ inline const Vec3& moment_on(const PairOutput& out, bool as_i) {
     return *reinterpret_cast<const Vec3*>(on_j + static_cast<std::size_t>(as_i) * sizeof(Vec3));
 }
 
+/// A pair's force and moments added to those of its particles a pass's thread owns, as
+/// World::gather_forces() adds its slot: +1 × F and M_j to j, -1 × F and M_i to i (the same
+/// bits, as long as each particle takes its pairs in pair order: World::force_owner_).
+inline void add_to_owned_particles(Vec3* force, Vec3* torque, std::size_t i, std::size_t j, bool own_i, bool own_j,
+                                   const Vec3& force_j, const Vec3& torque_j, const Vec3& torque_i) {
+    if (own_j) {
+        force[j] += 1.0 * force_j;
+        torque[j] += torque_j;
+    }
+    if (own_i) {
+        force[i] += -1.0 * force_j;
+        torque[i] += torque_i;
+    }
+}
+
 /// Per-bond constants (they depend only on the radii and BondParams): R̄, 1/R̄ and the
 /// stiffness, computed once instead of three divisions per bond and step (32 bytes; the
 /// rest of the section is rebuilt from R̄ and 1/R̄ by multiplications). Stale after a change
@@ -63,6 +79,8 @@ struct BondPassEnergy {
     /// Bonds released this step (they stopped acting): their pairs' contacts act from the next
     /// step on, so the contacts phase collects its pairs again (World::compute_contacts).
     std::int64_t releases = 0;
+    /// Bonds whose output the pass added to both particles, no slot written (BondPass::force_owners).
+    std::int64_t into_particles = 0;
     BondPassEnergy& operator+=(const BondPassEnergy& o) {
         stored += o.stored;
         released += o.released;
@@ -71,6 +89,7 @@ struct BondPassEnergy {
         lane_bonds += o.lane_bonds;
         scalar_bonds += o.scalar_bonds;
         releases += o.releases;
+        into_particles += o.into_particles;
         return *this;
     }
 };
@@ -89,6 +108,19 @@ struct BondPass {
     std::int64_t step;
     double time;  ///< [s]
     bool replaces_contact;  ///< the bonds replace their pairs' contacts (BondParams::bond_replaces_contact)
+    /// Forces into particles (SimParams::forces_in_pass; null: every bond writes its slot). Called
+    /// once per pass with the team's size, it gives each particle's owner: the thread whose share
+    /// of the bond blocks (thread_share) holds all its pairs, every one an acting bond; -1: none.
+    /// The pass zeroes `force` and `torque`, adds each bond's output to its owned particles in
+    /// bond order (= pair order) and writes the slot only where a particle is not owned.
+    std::function<std::int16_t*(int team)> force_owners;
+    /// The particles of the bonds the pass released, appended: force_owners() makes them unowned
+    /// from the next pass on (their pairs' contacts act then; this step's gather still takes
+    /// their sums from the pass).
+    std::vector<std::int32_t>* released_particles = nullptr;
+    Vec3* force = nullptr;                  ///< per particle [N]
+    Vec3* torque = nullptr;                 ///< per particle [N m]
+    std::vector<Vec3>* bond_torque = nullptr;  ///< per bond: its moment on j this step [N m] (the slots rebuilt from it)
 };
 
 /// An acting bond's force and moment on j into its pair's slot, and the moment on i from the

@@ -368,6 +368,9 @@ struct FlatJointLaw {
     /// with an element that breaks in the step, which go through step(); bitwise step()'s
     /// results (core/flat_joint_pass.cpp).
     static BondPassEnergy compute_all(const BondPass& pass, double dt);
+    /// The pair slots a pass into particles (BondPass::force_owners) did not write, from the
+    /// bonds and the moments it kept (flat_joint_pass.cpp): the same bits as writing them.
+    static void rebuild_slots(const BondPass& pass);
 
     static Context context(const auto& p, bool track) {
         const FlatJointParams& own = law_params<FlatJointLaw>(p);

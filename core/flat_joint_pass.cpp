@@ -531,9 +531,11 @@ struct BlockState {
     struct Terms {
         double stored, released, damage, slip;  ///< [J], as BondStepResult's
     };
+    static constexpr std::uint8_t kActed = 1, kReleased = 2;  ///< acted[]: the bond acted; and was released
     std::int64_t begin;
     std::unique_ptr<Terms[]> terms;     ///< per bond of the block (acting ones)
-    std::vector<std::uint8_t> acted;
+    std::vector<std::uint8_t> acted;    ///< 0, kActed or kReleased
+    PairOutput* outputs = nullptr;      ///< per bond of the block: its output (forces into particles), else null
     std::vector<BondBreak> breaks;      ///< the scalar kernel's scratch list
     std::int64_t lanes = 0, scalars = 0;
     std::int64_t releases = 0;          ///< joints released (no longer acting)
@@ -551,8 +553,9 @@ struct BlockState {
     }
     void record(std::int64_t k, const BondStepResult& r) {
         terms[static_cast<std::size_t>(k - begin)] = {r.stored, r.released, r.damage, r.slip};
-        acted[static_cast<std::size_t>(k - begin)] = 1;
-        releases += r.failure != BondState::intact;
+        const bool released = r.failure != BondState::intact;
+        acted[static_cast<std::size_t>(k - begin)] = released ? kReleased : kActed;
+        releases += released;
     }
     /// Every term as the scalar pass adds them, bond by bond.
     [[nodiscard]] BondPassEnergy sum() const {
@@ -586,6 +589,10 @@ struct FlatJointPass {
     std::span<const DiscElement> elements;
     std::vector<BondPassEnergy> partial;             ///< per bond block
     std::vector<std::vector<BreakEvent>> broken;     ///< per bond block, in bond order
+    /// Forces into particles (BondPass::force_owners): each particle's owning thread, else null;
+    /// per bond block, the particles of the joints it released.
+    std::int16_t* owner = nullptr;
+    std::vector<std::vector<std::int32_t>> released_particles;
 
     FlatJointPass(const BondPass& p, double step)
         : pass(p), dt(step), side_data(p.side.data()), stride(p.stride), track(p.sim.track_energy) {
@@ -595,13 +602,20 @@ struct FlatJointPass {
         const auto blocks = static_cast<std::size_t>(block_count(static_cast<std::int64_t>(p.bonds.size())));
         partial.resize(blocks);
         broken.resize(blocks);
+        released_particles.resize(blocks);
     }
 
-    void block(std::int64_t begin, std::int64_t end, std::int64_t blk) {
+    /// Bonds [begin, end), block blk, run by thread `thread` (its index in the force owners).
+    void block(std::int64_t begin, std::int64_t end, std::int64_t blk, std::int16_t thread = 0) {
         BlockState st(begin, end);
+        thread_local std::vector<PairOutput> scratch;  // a block's outputs: 144 kB, kept warm per thread
+        if (owner) {
+            scratch.resize(static_cast<std::size_t>(kBlockSize));
+            st.outputs = scratch.data();
+        }
         if (!use_lanes) {
             for (std::int64_t k = begin; k < end; ++k)
-                if (bond_acts(pass.bonds[static_cast<std::size_t>(k)])) st.scalar(k, scalar_joint(k, blk, st.breaks));
+                if (bond_acts(pass.bonds[static_cast<std::size_t>(k)])) st.scalar(k, scalar_joint(k, blk, st));
         } else {
             // no zero-fill of 2 x 22 kB per block: the lanes start as harmless dummies instead
             auto sets = std::make_unique_for_overwrite<LaneSet[]>(2);
@@ -613,7 +627,10 @@ struct FlatJointPass {
             flush(bonded, st, blk);
             flush(mixed, st, blk);
         }
+        std::int64_t into_particles = 0;
+        if (owner) into_particles = outputs_to_particles(st, end, blk, thread);
         partial[static_cast<std::size_t>(blk)] = st.sum();
+        partial[static_cast<std::size_t>(blk)].into_particles = into_particles;
         sort_breaks(broken[static_cast<std::size_t>(blk)]);
     }
 
@@ -658,10 +675,44 @@ struct FlatJointPass {
         if (set.mixed) mixed_joint_lanes(L, dt, elements);
         else joint_lanes(L, dt, elements);
         for (int l = 0; l < L.count; ++l) {
-            if (L.fails[l] == 0.0) st.lane(set.bond[l], store_lane(set.bond[l], L, l));
-            else st.scalar(set.bond[l], scalar_joint(set.bond[l], blk, st.breaks));
+            if (L.fails[l] == 0.0) st.lane(set.bond[l], store_lane(set.bond[l], L, l, output(st, set.bond[l])));
+            else st.scalar(set.bond[l], scalar_joint(set.bond[l], blk, st));
         }
         L.count = 0;
+    }
+
+    /// Where joint k's output goes: its pair's slot, or (forces into particles) the block's
+    /// outputs, which outputs_to_particles() then reads in bond order.
+    PairOutput& output(BlockState& st, std::int64_t k) const {
+        if (st.outputs) return st.outputs[k - st.begin];
+        return pass.pair_out[static_cast<std::size_t>(pass.bonds[static_cast<std::size_t>(k)].slot)];
+    }
+
+    /// Forces into particles: the block's outputs in bond order, each added to its particles
+    /// this thread owns (add_to_owned_particles). An owned particle's pairs are all acting
+    /// joints in this thread's share and bond order is pair order, so it takes them in its
+    /// gather's order. The slot is written unless both particles took the output and the joint
+    /// still acts (the slots are rebuilt from the bond and its moment on j: World::pair_outputs).
+    /// Returns the joints added to both particles without a slot.
+    std::int64_t outputs_to_particles(const BlockState& st, std::int64_t end, std::int64_t blk, std::int16_t thread) {
+        std::int64_t into_particles = 0;
+        Vec3* const force = pass.force;
+        Vec3* const torque = pass.torque;
+        for (std::int64_t k = st.begin; k < end; ++k) {
+            const std::uint8_t acted = st.acted[static_cast<std::size_t>(k - st.begin)];
+            if (acted == 0) continue;
+            const PairOutput& o = st.outputs[k - st.begin];
+            const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
+            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+            (*pass.bond_torque)[static_cast<std::size_t>(k)] = o.torque_j;
+            const bool own_i = owner[i] == thread, own_j = owner[j] == thread;
+            add_to_owned_particles(force, torque, i, j, own_i, own_j, o.force_j, o.torque_j, o.torque_i);
+            const bool released = acted == BlockState::kReleased;
+            if (own_i && own_j && !released) ++into_particles;
+            else pass.pair_out[static_cast<std::size_t>(b.slot)] = o;
+            if (released) released_particles[static_cast<std::size_t>(blk)].insert(released_particles[static_cast<std::size_t>(blk)].end(), {b.i, b.j});
+        }
+        return into_particles;
     }
 
     /// A block's break events in bond order (a set's joints may run after later bonds; the
@@ -671,10 +722,9 @@ struct FlatJointPass {
     }
 
     /// Prefetches for bond k: particle j of a bond a few bonds ahead (a random access), and that
-    /// joint's own streams: its bond record further on, its pair slot, its constants. The side
-    /// state (header and element shears) is one sequential stream, left to the hardware
-    /// prefetcher: prefetching its lines too made a calibrated compression test 2-4 % slower
-    /// (bench/README.md).
+    /// joint's own streams: its bond record further on, its pair slot (when the pass writes
+    /// every slot), its constants, the lines of its side state (header and element shears, for
+    /// writing).
     __attribute__((always_inline)) inline void prefetch_ahead(std::int64_t k, std::int64_t end) const {
         if (k + kPrefetchAhead >= end) return;
         const auto ka = static_cast<std::size_t>(k + kPrefetchAhead);
@@ -683,9 +733,12 @@ struct FlatJointPass {
         __builtin_prefetch(&pass.particles.velocity[jn]);
         __builtin_prefetch(&pass.particles.spin[jn]);
         __builtin_prefetch(&pass.bonds[std::min(ka + kPrefetchAhead, pass.bonds.size() - 1)], 1);
-        if (const std::int32_t slot = pass.bonds[ka].slot; slot >= 0)  // where its force goes
+        if (const std::int32_t slot = pass.bonds[ka].slot; !owner && slot >= 0)  // where its force goes
             __builtin_prefetch(&pass.pair_out[static_cast<std::size_t>(slot)], 1);
         __builtin_prefetch(&pass.constants[ka]);
+        const double* side = side_data + ka * stride;
+        for (std::size_t at = 0; at < stride; at += 8) __builtin_prefetch(side + at, 1);
+        __builtin_prefetch(side + stride - 1, 1);
     }
 
     /// Lane l: joint k's radii, its header and element shear forces, its constants (its
@@ -729,7 +782,8 @@ struct FlatJointPass {
 
     /// A joint whose lane took the law's common path (no element failed or was cut, nothing
     /// released): the lane's results become its state.
-    __attribute__((always_inline)) inline BondStepResult store_lane(std::int64_t k, const JointLanes& L, int l) const {
+    __attribute__((always_inline)) inline BondStepResult store_lane(std::int64_t k, const JointLanes& L, int l,
+                                                                    PairOutput& out) const {
         using namespace flat_side;
         ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
         double* side = side_data + static_cast<std::size_t>(k) * stride;
@@ -750,14 +804,14 @@ struct FlatJointPass {
         BondStepResult r;
         r.stored = track ? L.stored[l] : 0.0;
         r.slip = track ? L.slip[l] : 0.0;
-        bond_output(pass.pair_out[static_cast<std::size_t>(b.slot)], lane(L.force, l), lane(L.torque, l), pass.replaces_contact,
-                    lane(L.xb, l) - lane(L.xa, l));
+        bond_output(out, lane(L.force, l), lane(L.torque, l), pass.replaces_contact, lane(L.xb, l) - lane(L.xa, l));
         return r;
     }
 
     /// A joint through the law's scalar kernel, as the generic bond phase does; its breaks
     /// into block `blk`'s events.
-    BondStepResult scalar_joint(std::int64_t k, std::int64_t blk, std::vector<BondBreak>& breaks) {
+    BondStepResult scalar_joint(std::int64_t k, std::int64_t blk, BlockState& st) {
+        std::vector<BondBreak>& breaks = st.breaks;
         const ParticleSet& particles = pass.particles;
         ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
         const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
@@ -773,7 +827,7 @@ struct FlatJointPass {
                                                              s.xa + kin.arm_a + x.offset, kin.normal, sec.radius, x.tensile_stress,
                                                              x.shear_stress, x.element});
         breaks.clear();
-        PairOutput& out = pass.pair_out[static_cast<std::size_t>(b.slot)];
+        PairOutput& out = output(st, k);
         if (r.failure != BondState::intact) released_bond_output(out, pass.replaces_contact);
         else bond_output(out, r.force_j, cross(kin.arm_b, r.force_j) + r.moment_j, pass.replaces_contact, s.xb - s.xa);
         return r;
@@ -782,12 +836,63 @@ struct FlatJointPass {
 
 }  // namespace
 
+namespace {
+
+/// Forces into particles: the particles' sums zeroed, then each thread its share of the bond
+/// blocks, in order; the particles of the joints it released handed back.
+void run_into_particles(FlatJointPass& joints, const BondPass& pass) {
+    const auto nb = static_cast<std::int64_t>(pass.bonds.size());
+    const auto n = static_cast<std::int64_t>(pass.particles.size());
+#pragma omp parallel
+    {
+        const int team = team_size();
+        const auto t = static_cast<std::int16_t>(thread_index());
+        const auto [p0, p1] = thread_share(n, team, t);
+        std::fill(pass.force + p0, pass.force + p1, Vec3{});
+        std::fill(pass.torque + p0, pass.torque + p1, Vec3{});
+#pragma omp single
+        joints.owner = pass.force_owners(team);  // (a barrier: every share zeroed)
+        const auto [first, last] = thread_share(block_count(nb), team, t);
+        for (std::int64_t blk = first; blk < last; ++blk)
+            joints.block(blk * kBlockSize, std::min(nb, (blk + 1) * kBlockSize), blk, t);
+    }
+    for (const auto& list : joints.released_particles)
+        pass.released_particles->insert(pass.released_particles->end(), list.begin(), list.end());
+}
+
+}  // namespace
+
 BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
     FlatJointPass joints(pass, dt);
-    for_each_block(static_cast<std::int64_t>(pass.bonds.size()),
-                   [&](std::int64_t begin, std::int64_t end, std::int64_t blk) { joints.block(begin, end, blk); });
+    if (pass.force_owners) {
+        pass.bond_torque->resize(pass.bonds.size());
+        run_into_particles(joints, pass);
+    } else {
+        for_each_block(static_cast<std::int64_t>(pass.bonds.size()),
+                       [&](std::int64_t begin, std::int64_t end, std::int64_t blk) { joints.block(begin, end, blk); });
+    }
     for (auto& list : joints.broken) pass.breaks.insert(pass.breaks.end(), list.begin(), list.end());
     return ordered_sum(joints.partial);
+}
+
+// The slots a pass into particles left unwritten, as it would have written them: each acting
+// joint's force on j from its bond record (joint_resultant: F = F_s - F_n n, the same
+// operations) at the positions it was evaluated at, its moment on j as the pass kept it, the
+// moment on i from both (bond_output). Joints released in the pass wrote their slots.
+void FlatJointLaw::rebuild_slots(const BondPass& pass) {
+    const ParticleSet& P = pass.particles;
+    for_each_block(static_cast<std::int64_t>(pass.bonds.size()), [&](std::int64_t begin, std::int64_t end, std::int64_t) {
+        for (std::int64_t k = begin; k < end; ++k) {
+            const ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
+            if (!bond_acts(b) || b.slot < 0) continue;
+            const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
+            const PairState s{P.position[i], P.position[j], P.velocity[i], P.velocity[j], P.spin[i], P.spin[j], P.radius[i], P.radius[j]};
+            const Vec3 n = pair_kinematics(s, 0.0).normal;
+            const Vec3 force = b.shear_force - b.normal_force * n;
+            bond_output(pass.pair_out[static_cast<std::size_t>(b.slot)], force, (*pass.bond_torque)[static_cast<std::size_t>(k)],
+                        pass.replaces_contact, s.xb - s.xa);
+        }
+    });
 }
 
 }  // namespace gradem

@@ -4,6 +4,7 @@
 // block order. Floating-point sums therefore come out bitwise identical for any thread count.
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #ifdef _OPENMP
@@ -39,6 +40,12 @@ inline int thread_index() {
 #else
     return 0;
 #endif
+}
+
+/// Thread t's share of a pass over `blocks` blocks run by `team` threads: blocks [first, last),
+/// contiguous, in order (a pass that adds into particles as it goes: World::force_owner_).
+inline std::pair<std::int64_t, std::int64_t> thread_share(std::int64_t blocks, int team, int t) {
+    return {blocks * t / team, blocks * (t + 1) / team};
 }
 
 /// Calls body(begin, end, block) for every fixed block of [0, n), in parallel.

@@ -97,9 +97,11 @@ struct SimParams {
     /// whose pairs all lie in the same thread's share of the pass, as it goes, in pair order
     /// (their gather's order, so the same bits), instead of writing the pair's output slot for
     /// the gather to read back: 72 bytes per pair and step neither written nor read
-    /// (bench/README.md). Only the pairs of particles whose pairs span two shares keep their
-    /// slots (on one thread: none). The slots are rebuilt from the state when something reads
-    /// them (World::pair_outputs). Off only to compare the two.
+    /// (bench/README.md). The flat joint's pass does the same for the particles whose pairs are
+    /// all acting joints, in bond order at the end of each block of joints (its lane sets run
+    /// out of order). Only the pairs of particles whose pairs span two shares (or, for the flat
+    /// joint, include a contact) keep their slots. The slots are rebuilt from the state when
+    /// something reads them (World::pair_outputs). Off only to compare the two.
     bool forces_in_pass = true;
     [[nodiscard]] std::optional<std::string> invalid_reason() const;
 };

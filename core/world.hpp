@@ -150,13 +150,19 @@ private:
     /// (SimParams::forces_in_pass) and left pair_out_ behind it: rebuilt when read.
     bool forces_from_pass_ = false;
     bool pair_out_stale_ = false;
-    /// Per particle, the thread whose share of the parallel bond's pass holds every one of its
-    /// pairs (it adds their forces to the particle in the pass), -1 where its pairs span two
-    /// shares or it has none (the gather sums its slots); built for a team of
-    /// force_owner_team_ threads (0: to build) over the pairs' blocks cut as pass_share().
+    /// Per particle, the thread whose share of the pass holds every one of its pairs (it adds
+    /// their forces to the particle in the pass), -1 where its pairs span two shares or it has
+    /// none (the gather sums its slots); built for a team of force_owner_team_ threads (0: to
+    /// build) over the blocks cut as thread_share(): the parallel bond's pass shares the pair
+    /// blocks, the flat joint's the bond blocks (its particles' pairs must all be acting joints).
     std::vector<std::int16_t> force_owner_;
     int force_owner_team_ = 0;
     void build_force_owners(int team);
+    /// The flat joint's pass adds its joints' forces to the particles (SimParams::forces_in_pass;
+    /// the joints must own their pairs' slots: BondParams::bond_replaces_contact).
+    [[nodiscard]] bool joint_forces_in_pass() const;
+    std::vector<Vec3> bond_torque_;  ///< per bond: its moment on j from that pass [N m] (its slot rebuilt from it)
+    std::vector<std::int32_t> unowned_next_pass_;  ///< BondPass::released_particles
     std::vector<std::int32_t> incidence_start_;
     std::vector<Incidence> incidence_;
     std::vector<ParallelBond> bonds_;
@@ -242,9 +248,9 @@ private:
         std::int64_t runaway = -1;  ///< a particle that moved too far or went non-finite
     };
     void gather_forces();
-    /// pair_out_ as the latest evaluation would have written it, from the pass's batches and the
-    /// positions (world_pairs.cpp); called before anything reads the slots or changes what they
-    /// are computed from.
+    /// pair_out_ as the latest evaluation would have written it, from the pass's batches (the
+    /// flat joint's: its bonds, FlatJointLaw::rebuild_slots) and the positions (world_pairs.cpp);
+    /// called before anything reads the slots or changes what they are computed from.
     void rebuild_pair_outputs();
     void pair_outputs_current() const {
         if (pair_out_stale_) const_cast<World*>(this)->rebuild_pair_outputs();

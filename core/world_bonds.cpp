@@ -110,8 +110,24 @@ void World::refresh_bond_constants() {
 }
 
 BondPass World::bond_pass() {
-    return {particles_, bonds_, bond_side_, bond_side_stride_, bond_const_, bond_family_params_,
-            pair_out_, breaks_, sim_, step_, time_, bond_params_.bond_replaces_contact()};
+    BondPass pass{particles_, bonds_, bond_side_, bond_side_stride_, bond_const_, bond_family_params_,
+                  pair_out_, breaks_, sim_, step_, time_, bond_params_.bond_replaces_contact()};
+    pass.force = particles_.force.data();
+    pass.torque = particles_.torque.data();
+    pass.bond_torque = &bond_torque_;
+    pass.released_particles = &unowned_next_pass_;
+    if (joint_forces_in_pass())
+        pass.force_owners = [this](int team) {
+            if (force_owner_team_ != team) build_force_owners(team);
+            for (const std::int32_t p : unowned_next_pass_) force_owner_[static_cast<std::size_t>(p)] = -1;
+            unowned_next_pass_.clear();
+            return force_owner_.data();
+        };
+    return pass;
+}
+
+bool World::joint_forces_in_pass() const {
+    return sim_.forces_in_pass && bond_params_.model == BondModel::flat_joint && bond_params_.bond_replaces_contact();
 }
 
 // A law with its own pass over every bond (Law::compute_all, core/bond_pass.hpp) runs it; the

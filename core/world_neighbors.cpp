@@ -74,6 +74,7 @@ void World::merge_pairs(const std::vector<ParticlePair>& found) {
     pair_out_.assign(pairs_.size(), PairOutput{});  // as the pairs are new, so are their slots: none stale
     pair_out_stale_ = false;
     force_owner_team_ = 0;  // the pass's shares hold other pairs now
+    unowned_next_pass_.clear();  // the owners built anew know the released joints
 }
 
 // CSR: for each particle the pairs it belongs to, in pair order (fixed gather order).

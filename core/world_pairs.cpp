@@ -38,6 +38,7 @@
 #include <utility>
 
 #include "core/contact_law.hpp"
+#include "core/flat_joint_law.hpp"
 #include "core/lane_load.hpp"
 #include "core/parallel.hpp"
 #include "core/parallel_bond_law.hpp"
@@ -317,12 +318,6 @@ inline void run_batch(PairBatch& B, BatchResults& R, const BatchParticles& P, co
     }
 }
 
-/// Thread t's share of a pass over `blocks` pair blocks run by `team` threads: blocks
-/// [first, last), contiguous, in order.
-std::pair<std::int64_t, std::int64_t> pass_share(std::int64_t blocks, int team, int t) {
-    return {blocks * t / team, blocks * (t + 1) / team};
-}
-
 /// A bond's energy released by its break [J], kept per pair block in pair order (= bond order).
 struct Released {
     std::int64_t bond;
@@ -462,23 +457,16 @@ struct World::ParallelBondPass {
         return any_break;
     }
 
-    /// Lane l's force and moments added to those of its particles this thread owns, as
-    /// World::gather_forces() adds a slot: +1 × F and M_j to j, -1 × F and M_i to i. A share runs
-    /// in pair order, which is every particle's gather order, so each sum takes its terms in the
-    /// gather's order. True if both particles took them (the slot is then not needed).
+    /// Lane l's force and moments added to those of its particles this thread owns
+    /// (add_to_owned_particles). A share runs in pair order, which is every particle's gather
+    /// order, so each sum takes its terms in the gather's order. True if both particles took
+    /// them (the slot is then not needed).
     __attribute__((always_inline)) inline bool add_to_particles(const PairBatch& B, const BatchResults& R, int l,
                                                                 std::int16_t thread) {
         const auto i = static_cast<std::size_t>(B.i[l]), j = static_cast<std::size_t>(B.j[l]);
         const bool own_i = owner[i] == thread, own_j = owner[j] == thread;
-        const Vec3 f = lane(R.force, l);
-        if (own_j) {
-            w.particles_.force[j] += 1.0 * f;
-            w.particles_.torque[j] += lane(R.torque, l);
-        }
-        if (own_i) {
-            w.particles_.force[i] += -1.0 * f;
-            w.particles_.torque[i] += lane(R.torque_i, l);
-        }
+        add_to_owned_particles(w.particles_.force.data(), w.particles_.torque.data(), i, j, own_i, own_j, lane(R.force, l),
+                               lane(R.torque, l), lane(R.torque_i, l));
         return own_i & own_j;
     }
 
@@ -558,7 +546,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 if (force_owner_team_ != team) build_force_owners(team);
                 pass.owner = force_owner_.data();
             }  // (a barrier)
-            const auto [first, last] = pass_share(block_count(m), team, t);
+            const auto [first, last] = thread_share(block_count(m), team, t);
             for (std::int64_t blk = first; blk < last; ++blk)
                 pass.block<false>(blk * kBlockSize, std::min(m, (blk + 1) * kBlockSize), blk, t);
         }
@@ -576,20 +564,31 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
 
 // Each particle's force owner for a team of `team` threads: the thread whose share of the pass
 // holds both its first and its last pair (so all of them: the shares are contiguous), else -1.
-// A particle's incidence list is in pair order, so those are its list's ends.
+// A particle's incidence list is in pair order, so those are its list's ends. The flat joint's
+// pass runs over the bonds (in pair order too): there a particle's pairs must all be acting
+// joints (the contacts phase writes the others' slots), and the shares cut the bond blocks.
 void World::build_force_owners(int team) {
-    const std::int64_t blocks = block_count(static_cast<std::int64_t>(pairs_.size()));
+    const bool over_bonds = bond_params_.model != BondModel::parallel_bond;
+    const auto unit = [&](std::int32_t slot) -> std::int64_t {  // the pass's index of pair `slot`
+        return over_bonds ? pairs_[static_cast<std::size_t>(slot)].bond : slot;
+    };
+    const auto passed = [&](const Incidence& e) {  // the pass (not the contacts phase) sets the pair
+        const std::int32_t bond = pairs_[static_cast<std::size_t>(e.slot)].bond;
+        return bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(bond)]);
+    };
+    const std::int64_t blocks = block_count(static_cast<std::int64_t>(over_bonds ? bonds_.size() : pairs_.size()));
     std::vector<std::int16_t> share_of(static_cast<std::size_t>(blocks));
     for (int t = 0; t < team; ++t) {
-        const auto [first, last] = pass_share(blocks, team, t);
+        const auto [first, last] = thread_share(blocks, team, t);
         std::fill(share_of.begin() + first, share_of.begin() + last, static_cast<std::int16_t>(t));
     }
     force_owner_.assign(particles_.size(), -1);
     for (std::size_t p = 0; p < particles_.size(); ++p) {
         const std::int32_t begin = incidence_start_[p], end = incidence_start_[p + 1];
         if (begin == end) continue;
-        const std::int16_t first = share_of[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(begin)].slot / kBlockSize)];
-        const std::int16_t last = share_of[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(end - 1)].slot / kBlockSize)];
+        if (over_bonds && !std::all_of(incidence_.begin() + begin, incidence_.begin() + end, passed)) continue;
+        const std::int16_t first = share_of[static_cast<std::size_t>(unit(incidence_[static_cast<std::size_t>(begin)].slot) / kBlockSize)];
+        const std::int16_t last = share_of[static_cast<std::size_t>(unit(incidence_[static_cast<std::size_t>(end - 1)].slot) / kBlockSize)];
         if (first == last) force_owner_[p] = first;
     }
     force_owner_team_ = team;
@@ -602,6 +601,10 @@ void World::build_force_owners(int team) {
 // bits (tests/core/test_pair_pass.cpp). The kinematics' velocity terms are not used.
 void World::rebuild_pair_outputs() {
     pair_out_stale_ = false;
+    if (bond_params_.model == BondModel::flat_joint) {
+        FlatJointLaw::rebuild_slots(bond_pass());
+        return;
+    }
     const auto m = static_cast<std::int64_t>(pairs_.size());
     const ParticleSet& P = particles_;
     for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t) {

@@ -107,6 +107,8 @@ void World::evaluate_forces(double increment_dt, Stopwatch& clock) {
         compute_contacts(increment_dt, e.contact_strain, contact_slip);
         profile_.contacts += clock.lap();
         bond = compute_bonds(increment_dt);
+        forces_from_pass_ = pair_out_stale_ = joint_forces_in_pass();  // FlatJointLaw::compute_all
+        profile_.pair_steps_into_particles += bond.into_particles;
         if (bond.releases > 0) contact_pairs_stale_ = true;  // their contacts act from the next step
     }
     profile_.bond_lane_steps += bond.lane_bonds;

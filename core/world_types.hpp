@@ -54,8 +54,9 @@ struct StepProfile {
     /// Bond-steps a law's own pass (Law::compute_all) took in its SIMD lanes and through its
     /// scalar kernel; 0 for laws without one.
     std::int64_t bond_lane_steps = 0, bond_scalar_steps = 0;
-    /// Pair-steps whose force and moments the parallel bond's pass added to the particles itself
-    /// instead of writing the pair's slot for the gather (SimParams::forces_in_pass).
+    /// Pair-steps whose force and moments the parallel bond's or the flat joint's pass added to
+    /// the particles itself instead of writing the pair's slot for the gather
+    /// (SimParams::forces_in_pass).
     std::int64_t pair_steps_into_particles = 0;
     [[nodiscard]] double total() const { return neighbors + contacts + bonds + walls + integrate; }
 };
