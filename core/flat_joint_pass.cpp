@@ -24,7 +24,11 @@
 //      that breaks this step, a separated joint to release: its lane result is discarded, its
 //      state is still the old one) runs through FlatJointLaw::step as the generic bond phase
 //      does. The energy terms of a block are summed in bond order and its break events sorted
-//      into bond order, as the sets' joints run out of order.
+//      into bond order, as the sets' joints run out of order;
+//   4. with forces into particles (BondPass::force_owners), each thread runs a contiguous share
+//      of the blocks and a block keeps its joints' outputs, then adds them in bond order to the
+//      particles the thread owns (their gather's order), writing a slot only where a particle
+//      is not owned or the joint was released; rebuild_slots() writes the others when read.
 // The lanes call the law's own helpers (advance_frame, joint_step, element_trial, linear_normal,
 // unbonded_normal, joint_resultant) in the law's order, selects stand for its branches, and
 // every lane does the same IEEE operations as the scalar code (-ffp-contract=off: no FMA; no
