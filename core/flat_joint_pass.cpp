@@ -838,10 +838,6 @@ struct FlatJointPass {
     }
 };
 
-}  // namespace
-
-namespace {
-
 /// Forces into particles: the particles' sums zeroed, then each thread its share of the bond
 /// blocks, in order; the particles of the joints it released handed back.
 void run_into_particles(FlatJointPass& joints, const BondPass& pass) {
