@@ -6,29 +6,16 @@
 // count, through breaks and releases (a released joint's particles go back to the gather).
 #include <catch2/catch.hpp>
 
-#include <cstring>
-
 #include "bond_rig.hpp"
 #include "core/contact_law.hpp"
 #include "core_fixtures.hpp"
+#include "forces_in_pass_check.hpp"
 #include "../with_threads.hpp"
 
 using namespace gradem;
 using namespace gradem::test;
 
 namespace {
-
-std::uint64_t bits(double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-}
-
-void append_bits(std::vector<std::uint64_t>& out, const Vec3& v) {
-    out.push_back(bits(v.x));
-    out.push_back(bits(v.y));
-    out.push_back(bits(v.z));
-}
 
 // Flat joints (N_r 1, N_α 4) in a 12^3 cluster (3 bond blocks: the shares of 2 and 3 threads
 // split particles' joints) squeezed between platens past its first releases; `mixed`: bonded,
@@ -55,36 +42,23 @@ World squeezed_joints(const SimParams& sim, bool mixed) {
     return world;
 }
 
-struct Observed {
-    std::vector<std::uint64_t> particles, slots, breaks;
-    std::uint64_t ratio = 0;
-    std::int64_t into_particles = 0, released = 0;
-};
-
-Observed squeeze(int threads, bool forces_in_pass, bool mixed, int steps) {
+/// What the run reads of its forces after `steps` steps, with its crack log (bond, step) and its
+/// released joints' count as `other`.
+ForcesSeen squeeze(int threads, bool forces_in_pass, bool mixed, int steps) {
     SimParams sim;
     sim.forces_in_pass = forces_in_pass;
     return with_threads(threads, [&] {
         World world = squeezed_joints(sim, mixed);
         world.run(steps);
-        Observed o;
-        for (std::size_t i = 0; i < world.particles().size(); ++i) {
-            append_bits(o.particles, world.particles().force[i]);
-            append_bits(o.particles, world.particles().torque[i]);
-        }
-        o.ratio = bits(world.unbalanced_force_ratio());
-        for (const PairOutput& s : world.pair_outputs()) {
-            append_bits(o.slots, s.force_j);
-            append_bits(o.slots, s.torque_j);
-            append_bits(o.slots, s.torque_i);
-        }
+        ForcesSeen f = forces_seen(world);
         for (const BreakEvent& e : world.break_events()) {
-            o.breaks.push_back(static_cast<std::uint64_t>(e.bond));
-            o.breaks.push_back(static_cast<std::uint64_t>(e.step));
+            f.other.push_back(static_cast<std::uint64_t>(e.bond));
+            f.other.push_back(static_cast<std::uint64_t>(e.step));
         }
-        for (const ParallelBond& b : world.bonds()) o.released += !bond_acts(b);
-        o.into_particles = world.profile().pair_steps_into_particles;
-        return o;
+        std::uint64_t released = 0;
+        for (const ParallelBond& b : world.bonds()) released += !bond_acts(b);
+        f.other.push_back(released);
+        return f;
     });
 }
 
@@ -95,28 +69,10 @@ TEST_CASE("flat joint pass into particles: forces, slots as read and crack log b
     for (const bool mixed : {false, true}) {
         INFO((mixed ? "bonded, gapped and slit joints" : "bonded joints"));
         constexpr int kSteps = 3500;  // past the releases of separated joints (~40)
-        const Observed slots_one = squeeze(1, false, mixed, kSteps), slots_two = squeeze(2, false, mixed, kSteps);
-        REQUIRE(slots_one.into_particles == 0);
-        REQUIRE(slots_one.released > 20);  // joints released: their particles went back to the gather
-        REQUIRE(slots_one.breaks.size() > 2000);
-        const Observed one = squeeze(1, true, mixed, kSteps);
-        REQUIRE(one.into_particles > 0);
-        for (int threads : {1, 2, 3}) {
-            INFO("threads " << threads);
-            const Observed in_pass = threads == 1 ? one : squeeze(threads, true, mixed, kSteps);
-            REQUIRE(in_pass.into_particles > 0);  // the path under test ran ...
-            if (threads > 1) CHECK(in_pass.into_particles < one.into_particles);  // ... beside the slots
-            for (const Observed* other : {&slots_one, &slots_two}) {
-                CHECK(in_pass.particles == other->particles);
-                CHECK(in_pass.slots == other->slots);
-                CHECK(in_pass.ratio == other->ratio);
-                CHECK(in_pass.breaks == other->breaks);
-                CHECK(in_pass.released == other->released);
-            }
-        }
-        std::size_t nonzero = 0;  // the slots hold forces, not a zeroed array
-        for (std::uint64_t b : one.slots) nonzero += (b << 1) != 0;
-        CHECK(nonzero > one.slots.size() / 4);
+        const ForcesSeen slots = squeeze(1, false, mixed, kSteps);
+        REQUIRE(slots.other.back() > 20);      // joints released: their particles went back to the gather
+        REQUIRE(slots.other.size() > 4000);    // > 2000 breaks
+        check_forces_in_pass([&](int threads, bool forces_in_pass) { return squeeze(threads, forces_in_pass, mixed, kSteps); });
     }
 }
 

@@ -10,18 +10,13 @@
 
 #include "core/parallel.hpp"
 #include "core_fixtures.hpp"
+#include "forces_in_pass_check.hpp"
 #include "../with_threads.hpp"
 
 using namespace gradem;
 using namespace gradem::test;
 
 namespace {
-
-std::uint64_t bits(double x) {
-    std::uint64_t u;
-    std::memcpy(&u, &x, sizeof u);
-    return u;
-}
 
 BondParams bond_params() {
     BondParams bp;
@@ -77,7 +72,7 @@ TEST_CASE("fused pair pass: bond strain energy is the bond-block sum over the bo
         REQUIRE(world.break_events().size() > 50);              // ... and bonds have broken
         const std::vector<ParallelBond> before = world.bonds();
         world.run(1);  // the ledger now reports the evaluation at `before`
-        CHECK(bits(world.energy().strain_bond) == bits(bond_energy_by_blocks(world, before)));
+        CHECK(raw_bits(world.energy().strain_bond) == raw_bits(bond_energy_by_blocks(world, before)));
         CHECK(world.energy().strain_bond > 0.0);
     });
 }
@@ -96,8 +91,8 @@ Outcome squeeze(int threads, const SimParams& sim = SimParams{}) {
         world.run(2500);
         const EnergyLedger& e = world.energy();
         return Outcome{world.state_hash(),
-                       {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping), bits(e.friction),
-                        bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
+                       {raw_bits(e.kinetic), raw_bits(e.strain_contact), raw_bits(e.strain_bond), raw_bits(e.damping), raw_bits(e.friction),
+                        raw_bits(e.bond_break), raw_bits(e.boundary_work), raw_bits(e.reference)},
                        world.break_events()};
     });
 }
@@ -117,8 +112,8 @@ TEST_CASE("fused pair pass: energies and crack log identical for 1, 2 and 3 thre
         for (std::size_t k = 0; k < one.breaks.size(); ++k) {
             CHECK(other.breaks[k].bond == one.breaks[k].bond);
             CHECK(other.breaks[k].step == one.breaks[k].step);
-            CHECK(bits(other.breaks[k].position.x) == bits(one.breaks[k].position.x));
-            CHECK(bits(other.breaks[k].tensile_stress) == bits(one.breaks[k].tensile_stress));
+            CHECK(raw_bits(other.breaks[k].position.x) == raw_bits(one.breaks[k].position.x));
+            CHECK(raw_bits(other.breaks[k].tensile_stress) == raw_bits(one.breaks[k].tensile_stress));
         }
     }
     // breaks are logged in bond order within a step
@@ -161,8 +156,8 @@ TEST_CASE("fused pair pass: its batched state is unobservable: reading the recor
         REQUIRE(world.profile().rebuilds >= 2);  // the batches were rebuilt mid-run
         const EnergyLedger& e = world.energy();
         return Outcome{world.state_hash(),
-                       {bits(e.kinetic), bits(e.strain_contact), bits(e.strain_bond), bits(e.damping), bits(e.friction),
-                        bits(e.bond_break), bits(e.boundary_work), bits(e.reference)},
+                       {raw_bits(e.kinetic), raw_bits(e.strain_contact), raw_bits(e.strain_bond), raw_bits(e.damping), raw_bits(e.friction),
+                        raw_bits(e.bond_break), raw_bits(e.boundary_work), raw_bits(e.reference)},
                        world.break_events()};
     });
     REQUIRE(plain.breaks.size() > 100);
@@ -171,73 +166,22 @@ TEST_CASE("fused pair pass: its batched state is unobservable: reading the recor
     CHECK(observed.breaks.size() == plain.breaks.size());
 }
 
-namespace {
-
-/// A squeezed lattice after 2500 steps: its particles' forces and moments, its pair slots as
-/// read, its unbalanced-force ratio, all as raw bits, and how many pair-steps went straight
-/// into the particles.
-struct Forces {
-    std::vector<std::uint64_t> particle_bits, slot_bits;
-    std::uint64_t ratio_bits;
-    std::int64_t into_particles;
-};
-
-void append_bits(std::vector<std::uint64_t>& out, const Vec3& v) {
-    out.push_back(bits(v.x));
-    out.push_back(bits(v.y));
-    out.push_back(bits(v.z));
-}
-
-Forces squeezed_forces(int threads, bool forces_in_pass) {
-    SimParams sim;
-    sim.forces_in_pass = forces_in_pass;
-    return with_threads(threads, [&] {
-        World world = squeezed_lattice(sim);
-        world.run(2500);
-        Forces f;
-        for (std::size_t i = 0; i < world.particles().size(); ++i) {
-            append_bits(f.particle_bits, world.particles().force[i]);
-            append_bits(f.particle_bits, world.particles().torque[i]);
-        }
-        f.ratio_bits = bits(world.unbalanced_force_ratio());
-        for (const PairOutput& o : world.pair_outputs()) {
-            append_bits(f.slot_bits, o.force_j);
-            append_bits(f.slot_bits, o.torque_j);
-            append_bits(f.slot_bits, o.torque_i);
-        }
-        f.into_particles = world.profile().pair_steps_into_particles;
-        return f;
-    });
-}
-
-}  // namespace
-
 TEST_CASE("fused pair pass: the pairs' forces added to their particles in the pass, and the slots rebuilt when "
           "read, are bitwise those of the slots and the gather",
           "[core][pair_pass]") {
     // SimParams::forces_in_pass: a thread sums the pairs of the particles whose pairs all lie in
     // its share of the pass, in the gather's order, and writes no slot for them (one thread: no
     // slot at all); the other particles' pairs go through their slots and the gather. Reading
-    // the slots rebuilds them from the batches.
-    const Forces slots_one = squeezed_forces(1, false), slots_two = squeezed_forces(2, false);
-    REQUIRE(slots_one.into_particles == 0);
-    REQUIRE(slots_two.into_particles == 0);
-    const Forces in_pass_one = squeezed_forces(1, true);
-    REQUIRE(in_pass_one.into_particles > 0);
-    for (int threads : {1, 2, 3}) {
-        INFO("threads " << threads);
-        const Forces in_pass = threads == 1 ? in_pass_one : squeezed_forces(threads, true);
-        REQUIRE(in_pass.into_particles > 0);  // the path under test ran ...
-        if (threads > 1) CHECK(in_pass.into_particles < in_pass_one.into_particles);  // ... beside the slots
-        for (const Forces* other : {&slots_one, &slots_two}) {
-            CHECK(in_pass.particle_bits == other->particle_bits);
-            CHECK(in_pass.slot_bits == other->slot_bits);
-            CHECK(in_pass.ratio_bits == other->ratio_bits);
-        }
-    }
-    std::size_t nonzero = 0;  // the slots hold forces, not a zeroed array
-    for (std::uint64_t b : in_pass_one.slot_bits) nonzero += (b << 1) != 0;
-    CHECK(nonzero > in_pass_one.slot_bits.size() / 2);
+    // the slots rebuilds them from the batches. A squeezed lattice after 2500 steps.
+    check_forces_in_pass([](int threads, bool forces_in_pass) {
+        SimParams sim;
+        sim.forces_in_pass = forces_in_pass;
+        return with_threads(threads, [&] {
+            World world = squeezed_lattice(sim);
+            world.run(2500);
+            return forces_seen(world);
+        });
+    });
 }
 
 TEST_CASE("fused pair pass: slots left behind by the pass are rebuilt before a set-up change, not after it",
