@@ -113,7 +113,7 @@ struct BondPass {
     /// of the bond blocks (thread_share) holds all its pairs, every one an acting bond; -1: none.
     /// The pass zeroes `force` and `torque`, adds each bond's output to its owned particles in
     /// bond order (= pair order) and writes the slot only where a particle is not owned.
-    std::function<std::int16_t*(int team)> force_owners;
+    std::function<std::int16_t*(int team)> force_owners{};
     /// The particles of the bonds the pass released, appended: force_owners() makes them unowned
     /// from the next pass on (their pairs' contacts act then; this step's gather still takes
     /// their sums from the pass).

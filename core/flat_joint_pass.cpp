@@ -714,7 +714,10 @@ struct FlatJointPass {
             const bool released = acted == BlockState::kReleased;
             if (own_i && own_j && !released) ++into_particles;
             else pass.pair_out[static_cast<std::size_t>(b.slot)] = o;
-            if (released) released_particles[static_cast<std::size_t>(blk)].insert(released_particles[static_cast<std::size_t>(blk)].end(), {b.i, b.j});
+            if (released) {
+                auto& handed_back = released_particles[static_cast<std::size_t>(blk)];
+                handed_back.insert(handed_back.end(), {b.i, b.j});
+            }
         }
         return into_particles;
     }
