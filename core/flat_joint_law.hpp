@@ -143,7 +143,7 @@ struct JointFrame {
 
 /// The frame after this step's increments from the stored header (axis t1, bending θ_b, twist
 /// θ_t, U_n); `bend_total` receives the carried θ_b. Pure: the vectorised pass over joints
-/// (flat_joint_pass.cpp) calls it as carry_frame() does, so both give the same bits.
+/// (flat_joint_pass_lanes.cpp) calls it as carry_frame() does, so both give the same bits.
 inline JointFrame advance_frame(const Vec3& axis0, const Vec3& bend0, double twist0, double normal0,
                                 const PairKinematics& kin, Vec3& bend_total) {
     JointFrame f;

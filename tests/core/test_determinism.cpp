@@ -159,7 +159,7 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
 }
 
 // The same for other element counts: the fully bonded joints' kernel is compiled for each count
-// from 1 to 8 (core/flat_joint_pass.cpp), and a joint of more than 8 elements takes the scalar
+// from 1 to 8 (core/flat_joint_pass_lanes.cpp), and a joint of more than 8 elements takes the scalar
 // kernel. Bonded and mixed joints, past the first breaks: the same state bits, breaks and
 // energies as the scalar kernel; the lanes take the joints for up to 8 elements, none above.
 TEST_CASE("flat joints of 1 to 12 elements: the vectorised pass gives the scalar kernel's bits", "[core][determinism]") {
