@@ -53,6 +53,7 @@ bool same_elements(const std::vector<FlatJointLaw::Context>& contexts) {
     }
     return true;
 }
+
 /// A block's per-bond energy terms, summed in bond order at its end (the sets' joints run out of
 /// order), and its lane/scalar counts. The terms are not initialised (a bond's are read only
 /// once its flag is set): a block is 2048 bonds, and its step must not start by clearing them.
