@@ -3,18 +3,19 @@
 // core/flat_joint_law.hpp has the law; docs/bond_laws.md "Flat joint"). In a given step almost
 // no element of a joint breaks, so the law is a fixed sequence of arithmetic per element, the
 // same for every joint up to selects, and runs across joints in structure-of-arrays lanes:
-//   1. a scalar scan over each block of bonds copies the inputs of every acting joint into lanes
-//      (the joint's header and element shear forces, its constants): the fully bonded joints into
-//      one set of kJointLanes lanes, the others (partly bonded, slit, gapped, broken; with their
-//      elements' bonded flags) into a second, the mixed set; a set runs whenever it is full, so its
-//      lanes are full but for the block's last, and its particles' state is copied in just before
-//      (four lanes at a time by transposes where the processor has AVX2: core/lane_load.hpp);
+//   1. a scalar scan over each block of bonds gives every acting joint a lane (its bond, its
+//      particles, their radii, its strengths): the fully bonded joints in one set of kJointLanes
+//      lanes, the others (partly bonded, slit, gapped, broken) in a second, the mixed set; a set
+//      runs whenever it is full, so its lanes are full but for the block's last. Just before, the
+//      particles' state and the joints' (side state: header, elements' bonded flags and shear
+//      forces; constants) are copied in, four lanes at a time by transposes where the processor
+//      has AVX2 (core/lane_load.hpp);
 //   2. the set's kernel runs every lane (core/flat_joint_pass_lanes.cpp: the fully bonded set's, or
 //      the mixed set's);
-//   3. the lanes whose elements all held are written back, and every other joint (an element
-//      that breaks this step, a separated joint to release: its lane result is discarded, its
-//      state is still the old one) runs through FlatJointLaw::step as the generic bond phase
-//      does. The energy terms of a block are summed in bond order and its break events sorted
+//   3. the lanes whose elements all held are written back (by the same transposes), and every
+//      other joint (an element that breaks this step, a separated joint to release: its lane
+//      result is discarded, its state is still the old one) runs through FlatJointLaw::step as
+//      the generic bond phase does. The energy terms of a block are summed in bond order and its break events sorted
 //      into bond order, as the sets' joints run out of order;
 //   4. with forces into particles (BondPass::force_owners), each thread runs a contiguous share
 //      of the blocks and a block keeps its joints' outputs, then adds them in bond order to the
@@ -114,6 +115,7 @@ struct FlatJointPass {
     double* side_data;
     std::size_t stride;
     bool track;  ///< keep bond energies (sim.track_energy)
+    JointStore store;  ///< the joints' state, for the lanes
     std::vector<FlatJointLaw::Context> contexts;  ///< one per bond family pair
     bool use_lanes = false;
     std::span<const DiscElement> elements;
@@ -125,7 +127,8 @@ struct FlatJointPass {
     std::vector<std::vector<std::int32_t>> released_particles;
 
     FlatJointPass(const BondPass& p, double step)
-        : pass(p), dt(step), side_data(p.side.data()), stride(p.stride), track(p.sim.track_energy) {
+        : pass(p), dt(step), side_data(p.side.data()), stride(p.stride), track(p.sim.track_energy),
+          store{p.side.data(), p.stride, p.constants.data(), p.bonds.data()} {
         for (const BondParams& bp : p.family_params) contexts.push_back(FlatJointLaw::context(bp, track));
         use_lanes = p.sim.vectorised_bond_passes && same_elements(contexts);
         elements = contexts.front().elements;
@@ -191,8 +194,7 @@ struct FlatJointPass {
         set.bond[l] = k;
         set.ia[l] = b.i;
         set.ib[l] = b.j;
-        load_joint(set.lanes, l, k, b);
-        if (!fully_bonded) load_interface(set.lanes, l, k, b);
+        load_joint(set.lanes, l, b, !fully_bonded);
         if (set.lanes.count == kJointLanes) flush(set, st, blk);
     }
 
@@ -202,10 +204,12 @@ struct FlatJointPass {
         JointLanes& L = set.lanes;
         if (L.count == 0) return;
         load_particles(L, pass.particles, set.ia, set.ib, L.count);
+        load_joints(L, store, set.bond, L.count, elements.size());
         if (set.mixed) mixed_joint_lanes(L, dt, elements);
         else joint_lanes(L, dt, elements);
+        store_joints(L, store, set.bond, L.count, elements.size());
         for (int l = 0; l < L.count; ++l) {
-            if (L.fails[l] == 0.0) st.lane(set.bond[l], store_lane(set.bond[l], L, l, output(st, set.bond[l])));
+            if (L.fails[l] == 0.0) st.lane(set.bond[l], lane_output(L, l, output(st, set.bond[l])));
             else st.scalar(set.bond[l], scalar_joint(set.bond[l], blk, st));
         }
         L.count = 0;
@@ -274,66 +278,24 @@ struct FlatJointPass {
         __builtin_prefetch(side + stride - 1, 1);
     }
 
-    /// Lane l: joint k's radii, its header and element shear forces, its constants (its
-    /// particles' vectors are copied in at flush()).
-    __attribute__((always_inline)) inline void load_joint(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
-        using namespace flat_side;
+    /// Lane l: the radii of joint b's particles, its strengths and its family's constants (μ_r and
+    /// ρ for a joint not fully bonded); its state is copied in at flush() (load_joints).
+    __attribute__((always_inline)) inline void load_joint(JointLanes& L, int l, const ParallelBond& b, bool mixed) const {
         const ParticleSet& particles = pass.particles;
-        const double* side = side_data + static_cast<std::size_t>(k) * stride;
-        const auto i = static_cast<std::size_t>(b.i), j = static_cast<std::size_t>(b.j);
-        L.ra[l] = particles.radius[i];
-        L.rb[l] = particles.radius[j];
-        set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});
-        set_lane(L.bend, l, {side[bend], side[bend + 1], side[bend + 2]});
-        L.twist[l] = side[twist];
-        L.normal[l] = side[normal];
-        L.scale[l] = side[stiffness_scale];
-        for (std::size_t el = 0; el < elements.size(); ++el) {
-            const double* p = side + kFlatJointHeader + el * kFlatElementSize;
-            L.shear[el][0][l] = p[1];
-            L.shear[el][1][l] = p[2];
-        }
-        const BondConstants& bc = pass.constants[static_cast<std::size_t>(k)];
-        L.radius[l] = bc.radius;
-        L.kn[l] = bc.stiffness.normal;
-        L.ks[l] = bc.stiffness.shear;
+        const FlatJointLaw::Context& family = contexts[b.family_pair];
+        L.ra[l] = particles.radius[static_cast<std::size_t>(b.i)];
+        L.rb[l] = particles.radius[static_cast<std::size_t>(b.j)];
         L.strength[l] = b.tensile_strength;
         L.cohesion[l] = b.cohesion;
-        L.tan_phi[l] = contexts[b.family_pair].tan_phi;
-    }
-
-    /// Lane l of a joint not fully bonded: its elements' bonded flags, g_0, μ_r, ρ, release gap.
-    __attribute__((always_inline)) inline void load_interface(JointLanes& L, int l, std::int64_t k, const ParallelBond& b) const {
-        using namespace flat_side;
-        const double* side = side_data + static_cast<std::size_t>(k) * stride;
-        for (std::size_t el = 0; el < elements.size(); ++el) L.bonded[el][l] = side[kFlatJointHeader + el * kFlatElementSize];
-        L.gap0[l] = side[initial_gap];
-        L.release_gap[l] = side[release_gap];
-        L.friction[l] = contexts[b.family_pair].friction;
-        L.unbonded_kn[l] = contexts[b.family_pair].unbonded_kn;
+        L.tan_phi[l] = family.tan_phi;
+        if (!mixed) return;
+        L.friction[l] = family.friction;
+        L.unbonded_kn[l] = family.unbonded_kn;
     }
 
     /// A joint whose lane took the law's common path (no element failed or was cut, nothing
-    /// released): the lane's results become its state.
-    __attribute__((always_inline)) inline BondStepResult store_lane(std::int64_t k, const JointLanes& L, int l,
-                                                                    PairOutput& out) const {
-        using namespace flat_side;
-        ParallelBond& b = pass.bonds[static_cast<std::size_t>(k)];
-        double* side = side_data + static_cast<std::size_t>(k) * stride;
-        const Vec3 t1 = lane(L.t1, l), bend_total = lane(L.bend_total, l);
-        side[axis] = t1.x, side[axis + 1] = t1.y, side[axis + 2] = t1.z;
-        side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
-        side[twist] = L.twist[l];
-        side[normal] = L.normal[l];
-        for (std::size_t el = 0; el < elements.size(); ++el) {
-            double* p = side + kFlatJointHeader + el * kFlatElementSize;
-            p[1] = L.shear[el][0][l];
-            p[2] = L.shear[el][1][l];
-        }
-        b.normal_force = L.fn[l];
-        b.shear_force = lane(L.shear_res, l);
-        b.twist_moment = L.tw[l];
-        b.bend_moment = lane(L.bend_res, l);
+    /// released; its state already stored: store_joints): its output and energy terms.
+    __attribute__((always_inline)) inline BondStepResult lane_output(const JointLanes& L, int l, PairOutput& out) const {
         BondStepResult r;
         r.stored = track ? L.stored[l] : 0.0;
         r.slip = track ? L.slip[l] : 0.0;

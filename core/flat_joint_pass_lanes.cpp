@@ -14,9 +14,14 @@
 // every lane does the same IEEE operations as the scalar code (-ffp-contract=off: no FMA; no
 // reassociation), so the results are bitwise those of FlatJointLaw::step
 // (tests/core/test_determinism.cpp: the pinned hashes, and the lanes against the scalar kernel).
+// A set's joints' state comes in and goes back four lanes at a time by 4x4 transposes of their
+// side-state rows, constants and bond records (core/lane_load.hpp), not one double at a time: a
+// copy of bits either way (1.18x on 2e4-grain specimens, bench/README.md).
 #include "core/flat_joint_pass_lanes.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <utility>
 
 #include "core/disc_elements_branchless.hpp"
@@ -56,6 +61,126 @@ __attribute__((target("avx2"))) void load_particles_transposed(JointLanes& L, co
         transposed_lanes4(&L.wb[0][l0], &L.wb[1][l0], &L.wb[2][l0], particles.spin.data(), &ib[l0]);
     }
     load_particles_scalar(L, particles, ia, ib, l0, count);
+}
+#endif
+
+// The transposes below copy fixed runs of a joint's side state: these places.
+static_assert(flat_side::axis == 0 && flat_side::bend == 3 && flat_side::twist == 6 && flat_side::normal == 7);
+static_assert(flat_side::type == 8 && flat_side::initial_gap == 9 && flat_side::stiffness_scale == 10 &&
+              flat_side::release_gap == 11 && kFlatJointHeader == 12 && kFlatElementSize == 3);
+// ... and of its record: F̄_n, F̄_s, M̄_t, M̄_b one after the other.
+static_assert(offsetof(ParallelBond, shear_force) == offsetof(ParallelBond, normal_force) + sizeof(double) &&
+              offsetof(ParallelBond, twist_moment) == offsetof(ParallelBond, shear_force) + sizeof(Vec3) &&
+              offsetof(ParallelBond, bend_moment) == offsetof(ParallelBond, twist_moment) + sizeof(double));
+static_assert(offsetof(BondConstants, inv_radius) == sizeof(double) &&
+              offsetof(BondConstants, stiffness) == 2 * sizeof(double) && sizeof(BondStiffness) == 2 * sizeof(double));
+
+/// Joint k's side state.
+inline double* side_of(const JointStore& s, std::int64_t k) { return s.side + static_cast<std::size_t>(k) * s.stride; }
+
+/// Lane l from joint k's state, one double at a time.
+inline void load_joint_scalar(JointLanes& L, const JointStore& s, std::int64_t k, int l, std::size_t elements) {
+    using namespace flat_side;
+    const double* side = side_of(s, k);
+    set_lane(L.axis, l, {side[axis], side[axis + 1], side[axis + 2]});
+    set_lane(L.bend, l, {side[bend], side[bend + 1], side[bend + 2]});
+    L.twist[l] = side[twist];
+    L.normal[l] = side[normal];
+    L.gap0[l] = side[initial_gap];
+    L.scale[l] = side[stiffness_scale];
+    L.release_gap[l] = side[release_gap];
+    for (std::size_t el = 0; el < elements; ++el) {
+        const double* p = side + kFlatJointHeader + el * kFlatElementSize;
+        L.bonded[el][l] = p[0];
+        L.shear[el][0][l] = p[1];
+        L.shear[el][1][l] = p[2];
+    }
+    const BondConstants& bc = s.constants[k];
+    L.radius[l] = bc.radius;
+    L.kn[l] = bc.stiffness.normal;
+    L.ks[l] = bc.stiffness.shear;
+}
+
+/// Lane l's results into joint k's state, one double at a time.
+inline void store_joint_scalar(const JointLanes& L, const JointStore& s, std::int64_t k, int l, std::size_t elements) {
+    using namespace flat_side;
+    double* side = side_of(s, k);
+    const Vec3 t1 = lane(L.t1, l), bend_total = lane(L.bend_total, l);
+    side[axis] = t1.x, side[axis + 1] = t1.y, side[axis + 2] = t1.z;
+    side[bend] = bend_total.x, side[bend + 1] = bend_total.y, side[bend + 2] = bend_total.z;
+    side[twist] = L.twist[l];
+    side[normal] = L.normal[l];
+    for (std::size_t el = 0; el < elements; ++el) {
+        double* p = side + kFlatJointHeader + el * kFlatElementSize;
+        p[1] = L.shear[el][0][l];
+        p[2] = L.shear[el][1][l];
+    }
+    ParallelBond& b = s.bonds[k];
+    b.normal_force = L.fn[l];
+    b.shear_force = lane(L.shear_res, l);
+    b.twist_moment = L.tw[l];
+    b.bend_moment = lane(L.bend_res, l);
+}
+
+#ifdef GRADEM_LANE_TRANSPOSE
+/// load_joint_scalar for lanes [0, count), four at a time by transposes (core/lane_load.hpp):
+/// the same bits.
+__attribute__((target("avx2"))) void load_joints_transposed(JointLanes& L, const JointStore& s, const std::int64_t* bond,
+                                                            int count, std::size_t elements) {
+    double type[4], inv_radius[4];  // read with their neighbours, not needed
+    int l0 = 0;
+    for (; l0 + 4 <= count; l0 += 4) {
+        const double* const side[4] = {side_of(s, bond[l0]), side_of(s, bond[l0 + 1]), side_of(s, bond[l0 + 2]),
+                                       side_of(s, bond[l0 + 3])};
+        const auto at = [&](std::size_t offset) {
+            return std::array<const double*, 4>{side[0] + offset, side[1] + offset, side[2] + offset, side[3] + offset};
+        };
+        rows_to_lanes4(at(0).data(), std::array<double*, 4>{&L.axis[0][l0], &L.axis[1][l0], &L.axis[2][l0], &L.bend[0][l0]}.data());
+        rows_to_lanes4(at(4).data(), std::array<double*, 4>{&L.bend[1][l0], &L.bend[2][l0], &L.twist[l0], &L.normal[l0]}.data());
+        rows_to_lanes4(at(8).data(), std::array<double*, 4>{type, &L.gap0[l0], &L.scale[l0], &L.release_gap[l0]}.data());
+        for (std::size_t el = 0; el < elements; ++el)
+            rows_to_lanes4(at(kFlatJointHeader + el * kFlatElementSize).data(),
+                           std::array<double*, 4>{&L.bonded[el][l0], &L.shear[el][0][l0], &L.shear[el][1][l0], nullptr}.data(),
+                           3);
+        const std::array<const double*, 4> constants{&s.constants[bond[l0]].radius, &s.constants[bond[l0 + 1]].radius,
+                                                     &s.constants[bond[l0 + 2]].radius, &s.constants[bond[l0 + 3]].radius};
+        rows_to_lanes4(constants.data(), std::array<double*, 4>{&L.radius[l0], inv_radius, &L.kn[l0], &L.ks[l0]}.data());
+    }
+    for (int l = l0; l < count; ++l) load_joint_scalar(L, s, bond[l], l, elements);
+}
+
+/// store_joint_scalar for the lanes of [0, count) that took the common path, four at a time by
+/// transposes where all four did: the same bits.
+__attribute__((target("avx2"))) void store_joints_transposed(const JointLanes& L, const JointStore& s,
+                                                             const std::int64_t* bond, int count, std::size_t elements) {
+    int l0 = 0;
+    for (; l0 + 4 <= count; l0 += 4) {
+        if (L.fails[l0] != 0.0 || L.fails[l0 + 1] != 0.0 || L.fails[l0 + 2] != 0.0 || L.fails[l0 + 3] != 0.0) {
+            for (int l = l0; l < l0 + 4; ++l)
+                if (L.fails[l] == 0.0) store_joint_scalar(L, s, bond[l], l, elements);
+            continue;
+        }
+        double* const side[4] = {side_of(s, bond[l0]), side_of(s, bond[l0 + 1]), side_of(s, bond[l0 + 2]),
+                                 side_of(s, bond[l0 + 3])};
+        const auto at = [&](std::size_t offset) {
+            return std::array<double*, 4>{side[0] + offset, side[1] + offset, side[2] + offset, side[3] + offset};
+        };
+        lanes_to_rows4(std::array<const double*, 4>{&L.t1[0][l0], &L.t1[1][l0], &L.t1[2][l0], &L.bend_total[0][l0]}.data(),
+                       at(0).data());
+        lanes_to_rows4(std::array<const double*, 4>{&L.bend_total[1][l0], &L.bend_total[2][l0], &L.twist[l0], &L.normal[l0]}.data(),
+                       at(4).data());
+        for (std::size_t el = 0; el < elements; ++el)
+            lane_pairs_to_rows4(&L.shear[el][0][l0], &L.shear[el][1][l0], at(kFlatJointHeader + el * kFlatElementSize + 1).data());
+        double* const record[4] = {&s.bonds[bond[l0]].normal_force, &s.bonds[bond[l0 + 1]].normal_force,
+                                   &s.bonds[bond[l0 + 2]].normal_force, &s.bonds[bond[l0 + 3]].normal_force};
+        lanes_to_rows4(std::array<const double*, 4>{&L.fn[l0], &L.shear_res[0][l0], &L.shear_res[1][l0], &L.shear_res[2][l0]}.data(),
+                       record);
+        double* const moments[4] = {record[0] + 4, record[1] + 4, record[2] + 4, record[3] + 4};
+        lanes_to_rows4(std::array<const double*, 4>{&L.tw[l0], &L.bend_res[0][l0], &L.bend_res[1][l0], &L.bend_res[2][l0]}.data(),
+                       moments);
+    }
+    for (int l = l0; l < count; ++l)
+        if (L.fails[l] == 0.0) store_joint_scalar(L, s, bond[l], l, elements);
 }
 #endif
 
@@ -412,6 +537,22 @@ void load_particles(JointLanes& L, const ParticleSet& particles, const std::int3
     if (lane_transpose_available()) return load_particles_transposed(L, particles, ia, ib, count);
 #endif
     load_particles_scalar(L, particles, ia, ib, 0, count);
+}
+
+void load_joints(JointLanes& L, const JointStore& store, const std::int64_t* bond, int count, std::size_t elements) {
+#ifdef GRADEM_LANE_TRANSPOSE
+    if (lane_transpose_available()) return load_joints_transposed(L, store, bond, count, elements);
+#endif
+    for (int l = 0; l < count; ++l) load_joint_scalar(L, store, bond[l], l, elements);
+}
+
+void store_joints(const JointLanes& L, const JointStore& store, const std::int64_t* bond, int count,
+                  std::size_t elements) {
+#ifdef GRADEM_LANE_TRANSPOSE
+    if (lane_transpose_available()) return store_joints_transposed(L, store, bond, count, elements);
+#endif
+    for (int l = 0; l < count; ++l)
+        if (L.fails[l] == 0.0) store_joint_scalar(L, store, bond[l], l, elements);
 }
 
 GRADEM_JOINT_CLONES __attribute__((flatten)) void joint_lanes(JointLanes& L, double dt,

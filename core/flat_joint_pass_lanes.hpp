@@ -1,12 +1,15 @@
 #pragma once
 // The flat joint's joints in structure-of-arrays lanes (JointLanes) and the kernels that run a
 // set of them (core/flat_joint_pass_lanes.cpp): the arithmetic of FlatJointLaw::step across
-// kJointLanes joints at once. core/flat_joint_pass.cpp, the law's pass, fills the sets from the
-// bond records and side state and stores their results.
+// kJointLanes joints at once, and the copies of the joints' state into lanes and back
+// (load_joints, store_joints). core/flat_joint_pass.cpp, the law's pass, fills the sets and hands
+// their joints to the scalar kernel where a lane cannot finish.
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
+#include "core/bond_law.hpp"
+#include "core/bond_pass.hpp"
 #include "core/disc_elements.hpp"
 #include "core/particles.hpp"
 #include "core/vec3.hpp"
@@ -53,6 +56,26 @@ inline void set_lane(double (&a)[3][kJointLanes], int l, const Vec3& v) {
     a[1][l] = v.y;
     a[2][l] = v.z;
 }
+
+/// Where the joints keep their state, per bond k: `stride` doubles of side state from
+/// side + k * stride (core/flat_joint_law.hpp, flat_side), its constants, its record.
+struct JointStore {
+    double* side;
+    std::size_t stride;
+    const BondConstants* constants;
+    ParallelBond* bonds;
+};
+
+/// Lanes [0, count) from their joints' state (bond[l]: lane l's bond): the header (t1, θ_b, θ_t,
+/// U_n, g_0, the stiffness scale, the release gap), the elements' bonded flags and shear forces,
+/// R̄, k̄_n and k̄_s. Four lanes at a time by transposes where the processor has AVX2.
+void load_joints(JointLanes& L, const JointStore& store, const std::int64_t* bond, int count, std::size_t elements);
+
+/// The lanes of [0, count) whose joints took the common path (L.fails 0) into their joints'
+/// state: the new header (t1, θ_b, θ_t, U_n), element shear forces and the resultant in the bond
+/// record (F̄_n, F̄_s, M̄_t, M̄_b). Lanes that fail keep their joint's old state.
+void store_joints(const JointLanes& L, const JointStore& store, const std::int64_t* bond, int count,
+                  std::size_t elements);
 
 /// The particles of a set's lanes [0, count): positions, velocities and spins of both ends (the
 /// lanes past it keep their dummies).
