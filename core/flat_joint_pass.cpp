@@ -15,8 +15,8 @@
 //   3. the lanes whose elements all held are written back (by the same transposes), and every
 //      other joint (an element that breaks this step, a separated joint to release: its lane
 //      result is discarded, its state is still the old one) runs through FlatJointLaw::step as
-//      the generic bond phase does. The energy terms of a block are summed in bond order and its break events sorted
-//      into bond order, as the sets' joints run out of order;
+//      the generic bond phase does. The energy terms of a block are summed in bond order and its
+//      break events sorted into bond order, as the sets' joints run out of order;
 //   4. with forces into particles (BondPass::force_owners), each thread runs a contiguous share
 //      of the blocks and a block keeps its joints' outputs, then adds them in bond order to the
 //      particles the thread owns (their gather's order), writing a slot only where a particle
