@@ -9,6 +9,8 @@
 // `lane_transpose_available()` says which one runs. The same transposes copy fixed records
 // (a bond's side state, its constants) into lanes and back (rows_to_lanes4, lanes_to_rows4).
 #include <cstdint>
+#include <cstdlib>
+#include <string_view>
 
 #include "core/vec3.hpp"
 
@@ -19,10 +21,14 @@
 
 namespace gradem {
 
-/// True if this processor runs transposed_lanes4() (AVX2), checked once.
+/// True if this processor runs the transposes (AVX2), checked once. GRADEM_NO_LANE_TRANSPOSE=1 in
+/// the environment makes it false, so that the scalar copies that processors without AVX2 run
+/// are tested here too (tests/core/CMakeLists.txt: the pinned hashes with them).
 inline bool lane_transpose_available() {
 #ifdef GRADEM_LANE_TRANSPOSE
     static const bool available = [] {
+        if (const char* off = std::getenv("GRADEM_NO_LANE_TRANSPOSE"); off != nullptr && std::string_view(off) == "1")
+            return false;
         __builtin_cpu_init();
         return __builtin_cpu_supports("avx2") != 0;
     }();
