@@ -16,7 +16,7 @@
 // (tests/core/test_determinism.cpp: the pinned hashes, and the lanes against the scalar kernel).
 // A set's joints' state comes in and goes back four lanes at a time by 4x4 transposes of their
 // side-state rows, constants and bond records (core/lane_load.hpp), not one double at a time: a
-// copy of bits either way (1.18x on 2e4-grain specimens, bench/README.md).
+// copy of bits either way (1.10-1.18x on 2e4-grain specimens, bench/README.md).
 #include "core/flat_joint_pass_lanes.hpp"
 
 #include <algorithm>
