@@ -112,10 +112,8 @@ struct BlockState {
 struct FlatJointPass {
     const BondPass& pass;
     double dt;
-    double* side_data;
-    std::size_t stride;
     bool track;  ///< keep bond energies (sim.track_energy)
-    JointStore store;  ///< the joints' state, for the lanes
+    JointStore store;  ///< the joints' state: side state, constants, records
     std::vector<FlatJointLaw::Context> contexts;  ///< one per bond family pair
     bool use_lanes = false;
     std::span<const DiscElement> elements;
@@ -127,7 +125,7 @@ struct FlatJointPass {
     std::vector<std::vector<std::int32_t>> released_particles;
 
     FlatJointPass(const BondPass& p, double step)
-        : pass(p), dt(step), side_data(p.side.data()), stride(p.stride), track(p.sim.track_energy),
+        : pass(p), dt(step), track(p.sim.track_energy),
           store{p.side.data(), p.stride, p.constants.data(), p.bonds.data()} {
         for (const BondParams& bp : p.family_params) contexts.push_back(FlatJointLaw::context(bp, track));
         use_lanes = p.sim.vectorised_bond_passes && same_elements(contexts);
@@ -273,9 +271,9 @@ struct FlatJointPass {
         if (const std::int32_t slot = pass.bonds[ka].slot; !owner && slot >= 0)  // where its force goes
             __builtin_prefetch(&pass.pair_out[static_cast<std::size_t>(slot)], 1);
         __builtin_prefetch(&pass.constants[ka]);
-        const double* side = side_data + ka * stride;
-        for (std::size_t at = 0; at < stride; at += 8) __builtin_prefetch(side + at, 1);
-        __builtin_prefetch(side + stride - 1, 1);
+        const double* side = store.side + ka * store.stride;
+        for (std::size_t at = 0; at < store.stride; at += 8) __builtin_prefetch(side + at, 1);
+        __builtin_prefetch(side + store.stride - 1, 1);
     }
 
     /// Lane l: the radii of joint b's particles, its strengths and its family's constants (μ_r and
@@ -315,7 +313,7 @@ struct FlatJointPass {
         const PairKinematics kin = pair_kinematics(s, dt);
         const BondConstants& bc = pass.constants[static_cast<std::size_t>(k)];
         const BondSection sec = bond_section_of_radius(bc.radius, bc.inv_radius);
-        double* side = side_data + static_cast<std::size_t>(k) * stride;
+        double* side = store.side + static_cast<std::size_t>(k) * store.stride;
         const BondStepResult r = FlatJointLaw::step(contexts[b.family_pair], b, side, sec, bc.stiffness, kin, breaks);
         for (const BondBreak& x : breaks)
             broken[static_cast<std::size_t>(blk)].push_back({pass.step, pass.time, static_cast<std::int32_t>(k), b.i, b.j, x.mode,
