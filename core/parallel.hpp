@@ -59,6 +59,32 @@ void for_each_block(std::int64_t n, Body&& body) {
     }
 }
 
+/// Thread t's share [first, last) of n items cut at the given bounds (team + 1 of them, from 0 to
+/// n), or into equal parts where `bounds` is not for this team and these items.
+inline std::pair<std::int64_t, std::int64_t> item_share(const std::vector<std::int64_t>& bounds, std::int64_t n, int team,
+                                                        int t) {
+    if (static_cast<int>(bounds.size()) == team + 1 && bounds.back() == n)
+        return {bounds[static_cast<std::size_t>(t)], bounds[static_cast<std::size_t>(t) + 1]};
+    return {n * t / team, n * (t + 1) / team};
+}
+
+/// The part of a thread's share that lies in one fixed block: items [begin, end) of block
+/// `block`. A part that starts at its block's first item is the block's head, whose sums start
+/// the block's chain of additions; a share that starts inside a block begins with that block's
+/// tail (at most one per thread), whose terms are kept in order and added to the head's sums
+/// afterwards, so a block's sums have the same bits however the shares cut it.
+struct BlockPart {
+    std::int64_t begin = 0, end = 0, block = 0;
+    [[nodiscard]] bool head() const { return begin == block * kBlockSize; }
+};
+
+/// Calls body(part) for the block parts of items [first, last), in order.
+template <class Body>
+void for_each_block_part(std::int64_t first, std::int64_t last, Body&& body) {
+    for (std::int64_t b = first / kBlockSize; b * kBlockSize < last; ++b)
+        body(BlockPart{std::max(first, b * kBlockSize), std::min(last, (b + 1) * kBlockSize), b});
+}
+
 /// Sums `partials` in block order (deterministic).
 template <class T>
 T ordered_sum(const std::vector<T>& partials) {

@@ -94,6 +94,8 @@ std::optional<std::string> SimParams::invalid_reason() const {
         return violation("SimParams::divergence_energy_floor", divergence_energy_floor, ">= 0");
     if (!positive(divergence_energy_factor))
         return violation("SimParams::divergence_energy_factor", divergence_energy_factor, "> 0");
+    for (const double w : thread_share_weights)
+        if (!positive(w)) return violation("SimParams::thread_share_weights", w, "finite and > 0");
     return std::nullopt;
 }
 

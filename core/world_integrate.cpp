@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "core/pair_kinematics.hpp"  // select
 #include "core/parallel.hpp"
@@ -31,6 +32,18 @@ struct BlockSums {
     std::int64_t runaway = -1;
 };
 
+/// A block's tail (BlockPart): its block and each particle's terms, in particle order, added
+/// to the head's sums after the pass; its largest displacement and first runaway.
+struct TailTerms {
+    struct Terms {
+        double kinetic, damping, boundary_v, boundary_w;
+    };
+    std::int64_t block = -1;
+    std::vector<Terms> terms;
+    double max_disp2 = 0;
+    std::int64_t runaway = -1;
+};
+
 }  // namespace
 
 // Each particle sums the outputs of its pairs and wall contacts, in slot order: as j it adds F
@@ -47,7 +60,9 @@ void World::gather_forces() {
     const Incidence* const incidence = incidence_.data();
     const PairOutput* const out = pair_out_.data();
     const std::int16_t* const owner = forces_from_pass_ ? force_owner_.data() : nullptr;
-    for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t) {
+#pragma omp parallel
+    {
+        const auto [begin, end] = item_share(particle_share_, n, team_size(), thread_index());
         for (std::int64_t p = begin; p < end; ++p) {
             const auto i = static_cast<std::size_t>(p);
             if (owner && owner[i] >= 0) {
@@ -73,7 +88,7 @@ void World::gather_forces() {
             P.force[i] = f;
             P.torque[i] = t;
         }
-    });
+    }
 }
 
 namespace {
@@ -169,37 +184,76 @@ GRADEM_INTEGRATE_CLONES bool integrate_chunk(const IntegrateArrays& A, std::int6
     return true;
 }
 
+/// Each block's tails (in thread order, which is particle order) added to its head's sums, as
+/// if one thread had run the whole block.
+void add_tails(std::vector<BlockSums>& partial, const std::vector<TailTerms>& tails) {
+    for (const TailTerms& tail : tails) {
+        if (tail.block < 0) continue;
+        BlockSums& s = partial[static_cast<std::size_t>(tail.block)];
+        for (const TailTerms::Terms& x : tail.terms) {
+            s.boundary -= x.boundary_v;  // x - (+0) is x: a chunk without prescribed motion
+            s.boundary -= x.boundary_w;
+            s.kinetic += x.kinetic;
+            s.damping -= x.damping;
+        }
+        s.max_disp2 = std::max(s.max_disp2, tail.max_disp2);
+        if (s.runaway < 0) s.runaway = tail.runaway;
+    }
+}
+
 }  // namespace
 
 World::IntegrationSums World::integrate() {
     const auto n = static_cast<std::int64_t>(particles_.size());
-    std::vector<BlockSums> partial(static_cast<std::size_t>(block_count(n)));
+    std::vector<BlockSums> partial(static_cast<std::size_t>(block_count(n)));  // per block: its head's
+    std::vector<TailTerms> tails(static_cast<std::size_t>(thread_count()));    // per thread
     const double dt = dt_, alpha = sim_.local_damping;
     ParticleSet& P = particles_;
     const IntegrateArrays arrays{P.position.data(), P.velocity.data(), P.spin.data(),   P.force.data(),
                                  P.torque.data(),   position_at_rebuild_.data(), P.mass.data(), P.inertia.data(),
                                  P.radius.data(),   P.flags.data()};
-    for_each_block(n, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
-        BlockSums s;
-        ChunkTerms T;
-        for (std::int64_t p0 = begin; p0 < end; p0 += kIntegrateChunk) {
-            const std::int64_t count = std::min(kIntegrateChunk, end - p0);
-            // A chunk without a prescribed velocity or spin has no boundary work: its terms are +0,
-            // and x - (+0) is x, so they are not subtracted (the longest chain of the sums).
-            const bool any_prescribed = integrate_chunk(arrays, p0, count, dt, alpha, T);
-            for (std::int64_t q = 0; q < count; ++q) {  // the sums in particle order
-                if (any_prescribed) {
-                    s.boundary -= T.boundary_v[q];
-                    s.boundary -= T.boundary_w[q];
+#pragma omp parallel
+    {
+        const int t = thread_index();
+        const auto [first, last] = item_share(particle_share_, n, team_size(), t);
+        for_each_block_part(first, last, [&](const BlockPart& part) {
+            BlockSums s;
+            TailTerms& tail = tails[static_cast<std::size_t>(t)];
+            if (!part.head()) tail.block = part.block;
+            ChunkTerms T;
+            for (std::int64_t p0 = part.begin; p0 < part.end; p0 += kIntegrateChunk) {
+                const std::int64_t count = std::min(kIntegrateChunk, part.end - p0);
+                // A chunk without a prescribed velocity or spin has no boundary work: its terms are +0,
+                // and x - (+0) is x, so they are not subtracted (the longest chain of the sums).
+                const bool any_prescribed = integrate_chunk(arrays, p0, count, dt, alpha, T);
+                for (std::int64_t q = 0; q < count; ++q) {
+                    s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);
+                    if (s.runaway < 0 && T.runaway[q] != 0.0) s.runaway = p0 + q;
                 }
-                s.kinetic += T.kinetic[q];
-                s.damping -= T.damping[q];
-                s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);
-                if (s.runaway < 0 && T.runaway[q] != 0.0) s.runaway = p0 + q;
+                if (!part.head()) {  // a tail: its terms kept for the head's sums
+                    for (std::int64_t q = 0; q < count; ++q)
+                        tail.terms.push_back({T.kinetic[q], T.damping[q], any_prescribed ? T.boundary_v[q] : 0.0,
+                                              any_prescribed ? T.boundary_w[q] : 0.0});
+                    continue;
+                }
+                for (std::int64_t q = 0; q < count; ++q) {  // the sums in particle order
+                    if (any_prescribed) {
+                        s.boundary -= T.boundary_v[q];
+                        s.boundary -= T.boundary_w[q];
+                    }
+                    s.kinetic += T.kinetic[q];
+                    s.damping -= T.damping[q];
+                }
             }
-        }
-        partial[static_cast<std::size_t>(blk)] = s;
-    });
+            if (part.head()) {
+                partial[static_cast<std::size_t>(part.block)] = s;
+            } else {
+                tail.max_disp2 = s.max_disp2;
+                tail.runaway = s.runaway;
+            }
+        });
+    }
+    add_tails(partial, tails);
     IntegrationSums out;
     for (const BlockSums& s : partial) {
         out.kinetic += s.kinetic;

@@ -33,6 +33,7 @@
 // order as the scalar code (-ffp-contract=off: no FMA; no reassociation), and a select keeps
 // exactly the value the separate phases stored, so the results are bitwise the same.
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -330,6 +331,10 @@ struct BlockOut {
     std::int64_t into_particles = 0;  ///< pairs added to both particles in the pass, no slot written
     std::vector<BreakEvent> breaks;
     std::vector<Released> released;
+    /// A block's tail (BlockPart: another thread ran its head): its block, and its contact
+    /// energy terms in pair order, added to the head's sums at the merge.
+    std::int64_t tail_of = -1;
+    std::vector<std::array<double, 2>> tail_terms;
 };
 
 /// A lane without an intact bond (pair_batch.hpp): a harmless dummy bond.
@@ -358,7 +363,8 @@ struct World::ParallelBondPass {
     ParticleArrays particles;
     PassScalars scalars;
     int ahead_lines;  ///< 64-byte lines per lane that cover the part of a batch the kernel reads
-    std::vector<BlockOut> blocks;
+    std::vector<BlockOut> blocks;  ///< per pair block (its head)
+    std::vector<BlockOut> tails;   ///< per thread: the tail its share starts with, if any
 
     ParallelBondPass(World& world, double step)
         : w(world), track(world.sim_.track_energy),
@@ -398,10 +404,19 @@ struct World::ParallelBondPass {
                 static_cast<int>(std::clamp<std::int64_t>(end - k0 - kLanes, 0, kLanes))};
     }
 
-    /// Pairs [begin, end), block blk, run by thread `thread` (its index in force owners).
+    /// Pairs [begin, end), a block part (its head: blocks[], its tail: tails[thread]), run by
+    /// thread `thread` (its index in force owners).
     template <bool Prefetch>
-    void block(std::int64_t begin, std::int64_t end, std::int64_t blk, std::int16_t thread = 0) {
-        BlockOut& bo = blocks[static_cast<std::size_t>(blk)];
+    void block(const BlockPart& part, std::int16_t thread = 0) {
+        if (part.head()) return block_part<Prefetch, false>(part, blocks[static_cast<std::size_t>(part.block)], thread);
+        BlockOut& tail = tails[static_cast<std::size_t>(thread)];
+        tail.tail_of = part.block;
+        block_part<Prefetch, true>(part, tail, thread);
+    }
+
+    template <bool Prefetch, bool Tail>
+    void block_part(const BlockPart& part, BlockOut& bo, std::int16_t thread) {
+        const std::int64_t begin = part.begin, end = part.end;
         auto results = std::make_unique<BatchResults>();
         auto lanes = std::make_unique<BatchParticles>();  // lanes past the end of the pairs stay finite
         for (std::int64_t k0 = begin; k0 < end; k0 += kLanes) {
@@ -410,7 +425,7 @@ struct World::ParallelBondPass {
             if constexpr (Prefetch) prefetch_slots(k0 + kLanes, end);
             const bool any_overlap = load_particles(*lanes, *results, B, count, particles, ahead_of(k0, end), transpose);
             run_batch(B, *results, *lanes, scalars, any_overlap);
-            if (write_results(k0, count, B, *results, bo, thread)) record_breaks(count, B, *results, bo);
+            if (write_results<Tail>(k0, count, B, *results, bo, thread)) record_breaks(count, B, *results, bo);
         }
     }
 
@@ -425,8 +440,10 @@ struct World::ParallelBondPass {
     }
 
     /// The batch's results in pair order: each pair's output slot (or its force and moments
-    /// added to its particles), the contact energies summed in pair order, each holding bond's
+    /// added to its particles), the contact energies summed in pair order (Tail: kept in order
+    /// for the head's sums), each holding bond's
     /// stored energy. True if a bond of the batch broke.
+    template <bool Tail>
     __attribute__((always_inline)) inline bool write_results(std::int64_t k0, int count, const PairBatch& B,
                                                              const BatchResults& R, BlockOut& bo, std::int16_t thread) {
         bool any_break = false;
@@ -441,8 +458,12 @@ struct World::ParallelBondPass {
                 out.torque_i = lane(R.torque_i, l);
             }
             if (R.open[l] == 0.0) {
-                strain_sum += R.contact_strain[l];
-                slip_sum += R.contact_slip[l];
+                if constexpr (Tail) {
+                    bo.tail_terms.push_back({R.contact_strain[l], R.contact_slip[l]});
+                } else {
+                    strain_sum += R.contact_strain[l];
+                    slip_sum += R.contact_slip[l];
+                }
             }
             const std::int32_t bk = B.bond[l];
             if (bk < 0) continue;
@@ -492,25 +513,38 @@ struct World::ParallelBondPass {
         }
     }
 
-    /// The blocks' sums in block order: contact energies into `strain` and `slip`, breaks into
-    /// the World's list; bond energies per fixed bond block (see the top of this file).
+    /// The blocks' sums in block order (a block's head, then its tails in pair order): contact
+    /// energies into `strain` and `slip`, breaks into the World's list; bond energies per fixed
+    /// bond block (see the top of this file).
     BondEnergy merge(double& strain, double& slip) {
         const auto nb = static_cast<std::int64_t>(w.bonds_.size());
         double contact_strain = 0, contact_slip = 0;
         std::vector<BondEnergy> bond_partial(static_cast<std::size_t>(block_count(nb)));
-        for (const BlockOut& bo : blocks) {
-            contact_strain += bo.contact_strain;
-            contact_slip += bo.contact_slip;
+        const auto add_events = [&](const BlockOut& bo) {
             w.breaks_.insert(w.breaks_.end(), bo.breaks.begin(), bo.breaks.end());
             for (const Released& x : bo.released) {
                 BondEnergy& e = bond_partial[static_cast<std::size_t>(x.bond / kBlockSize)];
                 e.released += x.energy;
                 ++e.releases;
             }
+            w.profile_.pair_steps_into_particles += bo.into_particles;
+        };
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+            BlockOut& head = blocks[b];
+            add_events(head);
+            for (const BlockOut& tail : tails) {  // shares are in thread order = pair order
+                if (tail.tail_of != static_cast<std::int64_t>(b)) continue;
+                for (const auto& [stored, slipped] : tail.tail_terms) {
+                    head.contact_strain += stored;
+                    head.contact_slip += slipped;
+                }
+                add_events(tail);
+            }
+            contact_strain += head.contact_strain;
+            contact_slip += head.contact_slip;
         }
         strain = contact_strain;
         slip = contact_slip;
-        for (const BlockOut& bo : blocks) w.profile_.pair_steps_into_particles += bo.into_particles;
         if (track)
             for_each_block(nb, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
                 double stored = 0;
@@ -533,28 +567,36 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     const auto m = static_cast<std::int64_t>(pairs_.size());
     forces_from_pass_ = sim_.forces_in_pass;
     if (forces_from_pass_) {  // each thread its share of the blocks, in order
-        for_each_block(static_cast<std::int64_t>(particles_.size()), [&](std::int64_t begin, std::int64_t end, std::int64_t) {
-            std::fill(particles_.force.begin() + begin, particles_.force.begin() + end, Vec3{});
-            std::fill(particles_.torque.begin() + begin, particles_.torque.begin() + end, Vec3{});
-        });
+        pass.tails.resize(static_cast<std::size_t>(thread_count()));
+        share_seconds_.resize(static_cast<std::size_t>(thread_count()), 0.0);
+        int team_run = 1;
 #pragma omp parallel
         {
             const int team = team_size();
             const auto t = static_cast<std::int16_t>(thread_index());
+            const auto n = static_cast<std::int64_t>(particles_.size());
+            const auto [p0, p1] = item_share(particle_share_, n, team, t);
+            std::fill(particles_.force.begin() + p0, particles_.force.begin() + p1, Vec3{});
+            std::fill(particles_.torque.begin() + p0, particles_.torque.begin() + p1, Vec3{});
+#pragma omp barrier
 #pragma omp single
             {
                 if (force_owner_team_ != team) build_force_owners(team);
                 pass.owner = force_owner_.data();
             }  // (a barrier)
-            const auto [first, last] = thread_share(block_count(m), team, t);
-            for (std::int64_t blk = first; blk < last; ++blk)
-                pass.block<false>(blk * kBlockSize, std::min(m, (blk + 1) * kBlockSize), blk, t);
+            const auto [first, last] = item_share(pair_share_, m, team, t);
+            const auto start = std::chrono::steady_clock::now();
+            for_each_block_part(first, last, [&](const BlockPart& part) { pass.block<false>(part, t); });
+            share_seconds_[static_cast<std::size_t>(t)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (t == 0) team_run = team;
         }
+        balance_pair_shares(team_run);
     } else {
         const bool prefetch_streams = pass.streamed_bytes() > sim_.stream_prefetch_above_bytes;
         for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
-            if (prefetch_streams) pass.block<true>(begin, end, blk);
-            else pass.block<false>(begin, end, blk);
+            const BlockPart whole{begin, end, blk};
+            if (prefetch_streams) pass.block<true>(whole);
+            else pass.block<false>(whole);
         });
     }
     pair_out_stale_ = forces_from_pass_;
@@ -582,16 +624,84 @@ void World::build_force_owners(int team) {
         const auto [first, last] = thread_share(blocks, team, t);
         std::fill(share_of.begin() + first, share_of.begin() + last, static_cast<std::int16_t>(t));
     }
+    if (over_bonds) {
+        pair_share_.clear();
+        particle_share_.clear();
+    } else {
+        share_pairs(team);
+    }
+    const auto thread_of = [&](std::int64_t unit) -> std::int16_t {  // the share that runs unit
+        if (over_bonds) return share_of[static_cast<std::size_t>(unit / kBlockSize)];
+        const auto above = std::upper_bound(pair_share_.begin() + 1, pair_share_.end() - 1, unit);
+        return static_cast<std::int16_t>(above - (pair_share_.begin() + 1));
+    };
     force_owner_.assign(particles_.size(), -1);
     for (std::size_t p = 0; p < particles_.size(); ++p) {
         const std::int32_t begin = incidence_start_[p], end = incidence_start_[p + 1];
         if (begin == end) continue;
         if (over_bonds && !std::all_of(incidence_.begin() + begin, incidence_.begin() + end, passed)) continue;
-        const std::int16_t first = share_of[static_cast<std::size_t>(unit(incidence_[static_cast<std::size_t>(begin)].slot) / kBlockSize)];
-        const std::int16_t last = share_of[static_cast<std::size_t>(unit(incidence_[static_cast<std::size_t>(end - 1)].slot) / kBlockSize)];
+        const std::int16_t first = thread_of(unit(incidence_[static_cast<std::size_t>(begin)].slot));
+        const std::int16_t last = thread_of(unit(incidence_[static_cast<std::size_t>(end - 1)].slot));
         if (first == last) force_owner_[p] = first;
     }
     force_owner_team_ = team;
+}
+
+// The parallel bond's pass shared by a team of `team` threads: runs of whole batches of pairs in
+// proportion to the threads' weights (SimParams::thread_share_weights, else their measured
+// speeds, else equal; the shares need not fall on block bounds: BlockPart), and the particle
+// phases (zeroing the sums, integration, gather) cut where the pass's shares are, at each
+// share's first pair's particle i (pairs are in (i, j) order), so each thread integrates the
+// particles it added forces to, and the threads' loads are even to a batch of pairs rather than
+// to a 2048-pair block.
+void World::share_pairs(int team) {
+    const auto m = static_cast<std::int64_t>(pairs_.size());
+    const auto n = static_cast<std::int64_t>(particles_.size());
+    const auto teamsize = static_cast<std::size_t>(team);
+    std::vector<double> weight(teamsize, 1.0);
+    if (sim_.thread_share_weights.size() == teamsize) weight = sim_.thread_share_weights;
+    else if (share_speed_.size() == teamsize) weight = share_speed_;
+    double total = 0.0;
+    for (const double x : weight) total += x;
+    pair_share_.assign(teamsize + 1, m);
+    particle_share_.assign(teamsize + 1, n);
+    pair_share_[0] = particle_share_[0] = 0;
+    double before = 0.0;
+    for (std::size_t t = 1; t < teamsize; ++t) {
+        before += weight[t - 1];
+        const auto k = std::min(m, static_cast<std::int64_t>(static_cast<double>(m) * (before / total)) / kLanes * kLanes);
+        pair_share_[t] = std::max(k, pair_share_[t - 1]);
+        particle_share_[t] = pair_share_[t] < m ? pairs_[static_cast<std::size_t>(pair_share_[t])].i : n;
+    }
+}
+
+// Every kShareWindow steps of the pass on more than one thread (and no fixed weights), each
+// thread's speed (its pairs per second in its share) becomes its weight when shares cut by
+// these speeds would shorten the slowest thread's time by more than kShareGain; the force
+// owners are then built again at the next pass. Timing moves only the cut, never the results.
+void World::balance_pair_shares(int team) {
+    constexpr std::int64_t kShareWindow = 64;
+    constexpr double kShareGain = 0.03;
+    const auto teamsize = static_cast<std::size_t>(team);
+    if (team < 2 || !sim_.thread_share_weights.empty() || pair_share_.size() != teamsize + 1) return;
+    if (++share_window_steps_ < kShareWindow) return;
+    std::vector<double> speed(teamsize);
+    double slowest = 0.0, total_pairs = 0.0, total_speed = 0.0;
+    for (std::size_t t = 0; t < teamsize; ++t) {
+        const auto pairs = static_cast<double>(pair_share_[t + 1] - pair_share_[t]);
+        const double seconds = share_seconds_[t];
+        if (!(pairs > 0.0 && seconds > 0.0)) return share_window_reset();
+        speed[t] = pairs / seconds;
+        slowest = std::max(slowest, seconds);
+        total_pairs += pairs;
+        total_speed += speed[t];
+    }
+    const double balanced = total_pairs / total_speed;  // every thread's time with shares by speed
+    if (balanced < (1.0 - kShareGain) * slowest) {
+        share_speed_ = speed;
+        force_owner_team_ = 0;
+    }
+    share_window_reset();
 }
 
 // The slots the pass did not write (forces_from_pass_), as its kernel computes them

@@ -87,18 +87,46 @@ void check_same_results(const PathRuns& r) {
     CHECK(r.e_vec.strain_bond > 0.0);
 }
 
+/// Every term of two energy ledgers, bit for bit.
+void check_same_energy(const EnergyLedger& a, const EnergyLedger& b) {
+    CHECK(a.kinetic == b.kinetic);
+    CHECK(a.strain_contact == b.strain_contact);
+    CHECK(a.strain_bond == b.strain_bond);
+    CHECK(a.damping == b.damping);
+    CHECK(a.friction == b.friction);
+    CHECK(a.bond_break == b.bond_break);
+    CHECK(a.boundary_work == b.boundary_work);
+}
+
 }  // namespace
 
 TEST_CASE("state after N steps hashes the same with 1, 2 and 3 threads", "[core][determinism]") {
     std::size_t b1 = 0, b2 = 0, b3 = 0;
-    const std::uint64_t h1 = run_with_threads(1, b1);
-    const std::uint64_t h2 = run_with_threads(2, b2);
-    const std::uint64_t h3 = run_with_threads(3, b3);
+    EnergyLedger e1, e2, e3;
+    const std::uint64_t h1 = run_with_threads(1, b1, BondModel::parallel_bond, false, SimParams{}, &e1);
+    const std::uint64_t h2 = run_with_threads(2, b2, BondModel::parallel_bond, false, SimParams{}, &e2);
+    const std::uint64_t h3 = run_with_threads(3, b3, BondModel::parallel_bond, false, SimParams{}, &e3);
     REQUIRE(b1 > 0);  // the run really broke bonds (events merged across threads)
     CHECK(h1 == h2);
     CHECK(h1 == h3);
     CHECK(b1 == b2);
     CHECK(b1 == b3);
+    // The energy sums too: the threads' shares cut the pass's pair blocks and the integration's
+    // particle blocks anywhere (a block's tail added to its head's sums, World::share_pairs).
+    check_same_energy(e1, e2);
+    check_same_energy(e1, e3);
+    CHECK(e1.strain_contact > 0.0);
+    CHECK(e1.kinetic > 0.0);
+    // Shares far from equal (fixed, not measured): the same bits.
+    for (const std::vector<double>& weights : {std::vector<double>{1.0, 7.0}, std::vector<double>{5.0, 1.0, 2.0}}) {
+        SimParams skewed;
+        skewed.thread_share_weights = weights;
+        std::size_t bs = 0;
+        EnergyLedger es;
+        CHECK(run_with_threads(static_cast<int>(weights.size()), bs, BondModel::parallel_bond, false, skewed, &es) == h1);
+        CHECK(bs == b1);
+        check_same_energy(e1, es);
+    }
     // Pinned: the parallel bond's results must stay bitwise identical. Change this only with a stated reason (a deliberate change of the
     // arithmetic), never to make a refactor pass.
     // Re-pinned once, for one dt per step: the step that rebuilds neighbours computes
