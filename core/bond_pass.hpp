@@ -94,6 +94,16 @@ struct BondPassEnergy {
     }
 };
 
+/// How a law's own pass with forces into particles is shared by a team (World::share_pass): the
+/// bounds of each thread's bonds and particles (team + 1 each; other sizes: equal shares), each
+/// thread's seconds in its share (added to), and the team that ran it (set by the pass).
+struct PassShares {
+    const std::vector<std::int64_t>* units = nullptr;
+    const std::vector<std::int64_t>* particles = nullptr;
+    std::vector<double>* seconds = nullptr;
+    int team = 1;
+};
+
 /// The World's state a law's own pass reads and writes (for one call).
 struct BondPass {
     const ParticleSet& particles;
@@ -110,7 +120,7 @@ struct BondPass {
     bool replaces_contact;  ///< the bonds replace their pairs' contacts (BondParams::bond_replaces_contact)
     /// Forces into particles (SimParams::forces_in_pass; null: every bond writes its slot). Called
     /// once per pass with the team's size, it gives each particle's owner: the thread whose share
-    /// of the bond blocks (thread_share) holds all its pairs, every one an acting bond; -1: none.
+    /// of the bonds (`shares`) holds all its pairs, every one an acting bond; -1: none.
     /// The pass zeroes `force` and `torque`, adds each bond's output to its owned particles in
     /// bond order (= pair order) and writes the slot only where a particle is not owned.
     std::function<std::int16_t*(int team)> force_owners{};
@@ -121,6 +131,7 @@ struct BondPass {
     Vec3* force = nullptr;                  ///< per particle [N]
     Vec3* torque = nullptr;                 ///< per particle [N m]
     std::vector<Vec3>* bond_torque = nullptr;  ///< per bond: its moment on j this step [N m] (the slots rebuilt from it)
+    PassShares* shares = nullptr;              ///< with force_owners: the threads' shares
 };
 
 /// An acting bond's force and moment on j into its pair's slot, and the moment on i from the

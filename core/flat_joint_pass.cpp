@@ -24,6 +24,7 @@
 // The results are bitwise those of the generic phase, for any thread count
 // (tests/core/test_determinism.cpp: the pinned hashes, and the lanes against the scalar kernel).
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <utility>
 
@@ -91,6 +92,11 @@ struct BlockState {
     /// Every term as the scalar pass adds them, bond by bond.
     [[nodiscard]] BondPassEnergy sum() const {
         BondPassEnergy e;
+        add_to(e);
+        return e;
+    }
+    /// The terms added to `e` in bond order (a block's tail to its head's sums: BlockPart).
+    void add_to(BondPassEnergy& e) const {
         for (std::size_t n = 0; n < acted.size(); ++n) {
             if (!acted[n]) continue;
             e.stored += terms[n].stored;
@@ -98,10 +104,9 @@ struct BlockState {
             e.damage += terms[n].damage;
             e.slip += terms[n].slip;
         }
-        e.lane_bonds = lanes;
-        e.scalar_bonds = scalars;
-        e.releases = releases;
-        return e;
+        e.lane_bonds += lanes;
+        e.scalar_bonds += scalars;
+        e.releases += releases;
     }
 };
 
@@ -117,12 +122,19 @@ struct FlatJointPass {
     std::vector<FlatJointLaw::Context> contexts;  ///< one per bond family pair
     bool use_lanes = false;
     std::span<const DiscElement> elements;
-    std::vector<BondPassEnergy> partial;             ///< per bond block
-    std::vector<std::vector<BreakEvent>> broken;     ///< per bond block, in bond order
+    std::int64_t blocks = 0;                         ///< bond blocks
+    std::vector<BondPassEnergy> partial;             ///< per bond block (its head: BlockPart)
+    /// Per bond block, then per thread for the block tail its share starts with (tail_of).
+    std::vector<std::vector<BreakEvent>> broken;     ///< in bond order
     /// Forces into particles (BondPass::force_owners): each particle's owning thread, else null;
     /// per bond block, the particles of the joints it released.
     std::int16_t* owner = nullptr;
     std::vector<std::vector<std::int32_t>> released_particles;
+    /// Per thread: the block whose tail its share starts with (-1: none), that tail's terms and
+    /// its joints added to both particles.
+    std::vector<std::int64_t> tail_of;
+    std::vector<std::unique_ptr<BlockState>> tail_state;
+    std::vector<std::int64_t> tail_into_particles;
 
     FlatJointPass(const BondPass& p, double step)
         : pass(p), dt(step), track(p.sim.track_energy),
@@ -130,14 +142,22 @@ struct FlatJointPass {
         for (const BondParams& bp : p.family_params) contexts.push_back(FlatJointLaw::context(bp, track));
         use_lanes = p.sim.vectorised_bond_passes && same_elements(contexts);
         elements = contexts.front().elements;
-        const auto blocks = static_cast<std::size_t>(block_count(static_cast<std::int64_t>(p.bonds.size())));
-        partial.resize(blocks);
-        broken.resize(blocks);
-        released_particles.resize(blocks);
+        blocks = block_count(static_cast<std::int64_t>(p.bonds.size()));
+        const auto threads = static_cast<std::size_t>(thread_count());
+        partial.resize(static_cast<std::size_t>(blocks));
+        broken.resize(static_cast<std::size_t>(blocks) + threads);
+        released_particles.resize(static_cast<std::size_t>(blocks) + threads);
+        tail_of.assign(threads, -1);
+        tail_state.resize(threads);
+        tail_into_particles.assign(threads, 0);
     }
 
-    /// Bonds [begin, end), block blk, run by thread `thread` (its index in the force owners).
-    void block(std::int64_t begin, std::int64_t end, std::int64_t blk, std::int16_t thread = 0) {
+    /// Bonds [begin, end) of a block part (BlockPart), run by thread `thread` (its index in the
+    /// force owners). A head's sums and lists go to its block; a tail's are kept apart (at
+    /// `blocks` + thread) and added to its block's after the pass (add_tails).
+    void block(const BlockPart& part, std::int16_t thread = 0) {
+        const std::int64_t begin = part.begin, end = part.end;
+        const std::int64_t blk = part.head() ? part.block : blocks + thread;
         BlockState st(begin, end);
         thread_local std::vector<PairOutput> scratch;  // a block's outputs: 144 kB, kept warm per thread
         if (owner) {
@@ -160,9 +180,49 @@ struct FlatJointPass {
         }
         std::int64_t into_particles = 0;
         if (owner) into_particles = outputs_to_particles(st, end, blk, thread);
-        partial[static_cast<std::size_t>(blk)] = st.sum();
-        partial[static_cast<std::size_t>(blk)].into_particles = into_particles;
         sort_breaks(broken[static_cast<std::size_t>(blk)]);
+        if (part.head()) {
+            partial[static_cast<std::size_t>(blk)] = st.sum();
+            partial[static_cast<std::size_t>(blk)].into_particles = into_particles;
+            return;
+        }
+        const auto t = static_cast<std::size_t>(thread);
+        tail_of[t] = part.block;
+        tail_into_particles[t] = into_particles;
+        tail_state[t] = std::make_unique<BlockState>(std::move(st));
+    }
+
+    /// Each block's sums in block order, its tails' terms (thread order = bond order) added to its
+    /// head's, as if one thread had run the block; the break events into `breaks` in bond order.
+    BondPassEnergy add_tails(std::vector<BreakEvent>& breaks) {
+        BondPassEnergy total;
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            BondPassEnergy e = partial[static_cast<std::size_t>(b)];
+            const auto& head_events = broken[static_cast<std::size_t>(b)];
+            breaks.insert(breaks.end(), head_events.begin(), head_events.end());
+            for (std::size_t t = 0; t < tail_of.size(); ++t) {
+                if (tail_of[t] != b) continue;
+                tail_state[t]->add_to(e);
+                e.into_particles += tail_into_particles[t];
+                const auto& events = broken[static_cast<std::size_t>(blocks) + t];
+                breaks.insert(breaks.end(), events.begin(), events.end());
+            }
+            total += e;
+        }
+        return total;
+    }
+
+    /// The particles of the joints released, in bond order.
+    void hand_back_released(std::vector<std::int32_t>& out) const {
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            const auto& head = released_particles[static_cast<std::size_t>(b)];
+            out.insert(out.end(), head.begin(), head.end());
+            for (std::size_t t = 0; t < tail_of.size(); ++t) {
+                if (tail_of[t] != b) continue;
+                const auto& tail = released_particles[static_cast<std::size_t>(blocks) + t];
+                out.insert(out.end(), tail.begin(), tail.end());
+            }
+        }
     }
 
     /// One set of lanes and the bond of each: the fully bonded joints (intact, interface 0), or
@@ -327,26 +387,33 @@ struct FlatJointPass {
     }
 };
 
-/// Forces into particles: the particles' sums zeroed, then each thread its share of the bond
-/// blocks, in order; the particles of the joints it released handed back.
+/// Forces into particles: the particles' sums zeroed, then each thread its share of the bonds
+/// (BondPass::shares: its time in it measured), in order; the particles of the joints it released
+/// handed back.
 void run_into_particles(FlatJointPass& joints, const BondPass& pass) {
     const auto nb = static_cast<std::int64_t>(pass.bonds.size());
     const auto n = static_cast<std::int64_t>(pass.particles.size());
+    PassShares& shares = *pass.shares;
+    shares.seconds->resize(static_cast<std::size_t>(thread_count()), 0.0);
 #pragma omp parallel
     {
         const int team = team_size();
         const auto t = static_cast<std::int16_t>(thread_index());
-        const auto [p0, p1] = thread_share(n, team, t);
+        const auto [p0, p1] = item_share(*shares.particles, n, team, t);
         std::fill(pass.force + p0, pass.force + p1, Vec3{});
         std::fill(pass.torque + p0, pass.torque + p1, Vec3{});
+#pragma omp barrier
 #pragma omp single
-        joints.owner = pass.force_owners(team);  // (a barrier: every share zeroed)
-        const auto [first, last] = thread_share(block_count(nb), team, t);
-        for (std::int64_t blk = first; blk < last; ++blk)
-            joints.block(blk * kBlockSize, std::min(nb, (blk + 1) * kBlockSize), blk, t);
+        {
+            joints.owner = pass.force_owners(team);  // (cuts the shares again when stale)
+            shares.team = team;
+        }
+        const auto [first, last] = item_share(*shares.units, nb, team, t);
+        const auto start = std::chrono::steady_clock::now();
+        for_each_block_part(first, last, [&](const BlockPart& part) { joints.block(part, t); });
+        (*shares.seconds)[static_cast<std::size_t>(t)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    for (const auto& list : joints.released_particles)
-        pass.released_particles->insert(pass.released_particles->end(), list.begin(), list.end());
+    joints.hand_back_released(*pass.released_particles);
 }
 
 }  // namespace
@@ -358,10 +425,9 @@ BondPassEnergy FlatJointLaw::compute_all(const BondPass& pass, double dt) {
         run_into_particles(joints, pass);
     } else {
         for_each_block(static_cast<std::int64_t>(pass.bonds.size()),
-                       [&](std::int64_t begin, std::int64_t end, std::int64_t blk) { joints.block(begin, end, blk); });
+                       [&](std::int64_t begin, std::int64_t end, std::int64_t blk) { joints.block({begin, end, blk}); });
     }
-    for (auto& list : joints.broken) pass.breaks.insert(pass.breaks.end(), list.begin(), list.end());
-    return ordered_sum(joints.partial);
+    return joints.add_tails(pass.breaks);
 }
 
 // The slots a pass into particles left unwritten, as it would have written them: each acting

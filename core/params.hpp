@@ -104,8 +104,9 @@ struct SimParams {
     /// joint, include a contact) keep their slots. The slots are rebuilt from the state when
     /// something reads them (World::pair_outputs). Off only to compare the two.
     bool forces_in_pass = true;
-    /// How the threads share the parallel bond's pass and the particle phases (forces_in_pass):
-    /// empty, in proportion to each thread's measured speed (World::balance_pair_shares: the
+    /// How the threads share a pass with forces into particles (forces_in_pass: the parallel
+    /// bond's over its pairs, the flat joint's over its bonds) and the particle phases:
+    /// empty, in proportion to each thread's measured speed (World::balance_pass_shares: the
     /// cores of one machine can differ by a fifth); else fixed relative shares, one per thread
     /// (> 0; used by a team of as many threads, else ignored). Speed only: the results are
     /// bitwise the same for any shares (a block cut by two shares is summed as one:

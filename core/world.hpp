@@ -158,16 +158,18 @@ private:
     std::vector<std::int16_t> force_owner_;
     int force_owner_team_ = 0;
     void build_force_owners(int team);
-    /// The parallel bond's pass with forces into particles: each thread's share of the pairs and
-    /// of the particles (team + 1 bounds; World::share_pairs), empty otherwise (equal shares).
-    std::vector<std::int64_t> pair_share_, particle_share_;
-    /// Relative speeds of the team's threads (empty: equal) that share_pairs() cuts the shares
+    /// A pass with forces into particles: each thread's share of its pairs (parallel bond) or
+    /// bonds (flat joint) and of the particles (team + 1 bounds; World::share_pass), empty
+    /// otherwise (equal shares).
+    std::vector<std::int64_t> pass_share_, particle_share_;
+    /// Relative speeds of the team's threads (empty: equal) that share_pass() cuts the shares
     /// by, measured from the time each thread spends in its share of the pass (SimParams::
     /// thread_share_weights empty), over windows of steps.
     std::vector<double> share_speed_, share_seconds_;
     std::int64_t share_window_steps_ = 0;
-    void share_pairs(int team);
-    void balance_pair_shares(int team);
+    PassShares pass_shares_;  ///< the above for a law's own pass (bond_pass())
+    void share_pass(int team, bool over_bonds);
+    void balance_pass_shares(int team);
     void share_window_reset() {
         share_seconds_.assign(share_seconds_.size(), 0.0);
         share_window_steps_ = 0;

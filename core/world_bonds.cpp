@@ -116,13 +116,16 @@ BondPass World::bond_pass() {
     pass.torque = particles_.torque.data();
     pass.bond_torque = &bond_torque_;
     pass.released_particles = &unowned_next_pass_;
-    if (joint_forces_in_pass())
+    if (joint_forces_in_pass()) {
         pass.force_owners = [this](int team) {
             if (force_owner_team_ != team) build_force_owners(team);
             for (const std::int32_t p : unowned_next_pass_) force_owner_[static_cast<std::size_t>(p)] = -1;
             unowned_next_pass_.clear();
             return force_owner_.data();
         };
+        pass_shares_ = {&pass_share_, &particle_share_, &share_seconds_, 1};
+        pass.shares = &pass_shares_;
+    }
     return pass;
 }
 
@@ -136,9 +139,13 @@ World::BondEnergy World::compute_bonds(double dt) {
     if (bond_const_stale_) refresh_bond_constants();
     return visit_bond_law(bond_params_.model, [&](auto law) -> BondEnergy {
         using Law = decltype(law);
-        if constexpr (requires(const BondPass& pass) { Law::compute_all(pass, dt); })
-            return Law::compute_all(bond_pass(), dt);
-        else return compute_bonds_with<Law>(dt);
+        if constexpr (requires(const BondPass& pass) { Law::compute_all(pass, dt); }) {
+            const BondEnergy e = Law::compute_all(bond_pass(), dt);
+            if (joint_forces_in_pass()) balance_pass_shares(pass_shares_.team);
+            return e;
+        } else {
+            return compute_bonds_with<Law>(dt);
+        }
     });
 }
 

@@ -584,13 +584,13 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
                 if (force_owner_team_ != team) build_force_owners(team);
                 pass.owner = force_owner_.data();
             }  // (a barrier)
-            const auto [first, last] = item_share(pair_share_, m, team, t);
+            const auto [first, last] = item_share(pass_share_, m, team, t);
             const auto start = std::chrono::steady_clock::now();
             for_each_block_part(first, last, [&](const BlockPart& part) { pass.block<false>(part, t); });
             share_seconds_[static_cast<std::size_t>(t)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (t == 0) team_run = team;
         }
-        balance_pair_shares(team_run);
+        balance_pass_shares(team_run);
     } else {
         const bool prefetch_streams = pass.streamed_bytes() > sim_.stream_prefetch_above_bytes;
         for_each_block(m, [&](std::int64_t begin, std::int64_t end, std::int64_t blk) {
@@ -618,22 +618,10 @@ void World::build_force_owners(int team) {
         const std::int32_t bond = pairs_[static_cast<std::size_t>(e.slot)].bond;
         return bond >= 0 && bond_acts(bonds_[static_cast<std::size_t>(bond)]);
     };
-    const std::int64_t blocks = block_count(static_cast<std::int64_t>(over_bonds ? bonds_.size() : pairs_.size()));
-    std::vector<std::int16_t> share_of(static_cast<std::size_t>(blocks));
-    for (int t = 0; t < team; ++t) {
-        const auto [first, last] = thread_share(blocks, team, t);
-        std::fill(share_of.begin() + first, share_of.begin() + last, static_cast<std::int16_t>(t));
-    }
-    if (over_bonds) {
-        pair_share_.clear();
-        particle_share_.clear();
-    } else {
-        share_pairs(team);
-    }
+    share_pass(team, over_bonds);
     const auto thread_of = [&](std::int64_t unit) -> std::int16_t {  // the share that runs unit
-        if (over_bonds) return share_of[static_cast<std::size_t>(unit / kBlockSize)];
-        const auto above = std::upper_bound(pair_share_.begin() + 1, pair_share_.end() - 1, unit);
-        return static_cast<std::int16_t>(above - (pair_share_.begin() + 1));
+        const auto above = std::upper_bound(pass_share_.begin() + 1, pass_share_.end() - 1, unit);
+        return static_cast<std::int16_t>(above - (pass_share_.begin() + 1));
     };
     force_owner_.assign(particles_.size(), -1);
     for (std::size_t p = 0; p < particles_.size(); ++p) {
@@ -647,15 +635,18 @@ void World::build_force_owners(int team) {
     force_owner_team_ = team;
 }
 
-// The parallel bond's pass shared by a team of `team` threads: runs of whole batches of pairs in
-// proportion to the threads' weights (SimParams::thread_share_weights, else their measured
-// speeds, else equal; the shares need not fall on block bounds: BlockPart), and the particle
-// phases (zeroing the sums, integration, gather) cut where the pass's shares are, at each
-// share's first pair's particle i (pairs are in (i, j) order), so each thread integrates the
-// particles it added forces to, and the threads' loads are even to a batch of pairs rather than
-// to a 2048-pair block.
-void World::share_pairs(int team) {
-    const auto m = static_cast<std::int64_t>(pairs_.size());
+// The pass with forces into particles shared by a team of `team` threads (the parallel bond's
+// over the pairs, the flat joint's over the bonds): runs of whole batches of 32 in proportion to
+// the threads' weights (SimParams::thread_share_weights, else their measured speeds, else
+// equal; the shares need not fall on block bounds: BlockPart), and the particle phases (zeroing
+// the sums, integration, gather) cut where the pass's shares are, at each share's first pair's
+// particle i (pairs and bonds are in (i, j) order), so each thread integrates the particles it
+// added forces to, and the threads' loads are even to a batch rather than to a 2048-item block.
+void World::share_pass(int team, bool over_bonds) {
+    const auto m = static_cast<std::int64_t>(over_bonds ? bonds_.size() : pairs_.size());
+    const auto first_particle = [&](std::int64_t k) {
+        return over_bonds ? bonds_[static_cast<std::size_t>(k)].i : pairs_[static_cast<std::size_t>(k)].i;
+    };
     const auto n = static_cast<std::int64_t>(particles_.size());
     const auto teamsize = static_cast<std::size_t>(team);
     std::vector<double> weight(teamsize, 1.0);
@@ -663,32 +654,32 @@ void World::share_pairs(int team) {
     else if (share_speed_.size() == teamsize) weight = share_speed_;
     double total = 0.0;
     for (const double x : weight) total += x;
-    pair_share_.assign(teamsize + 1, m);
+    pass_share_.assign(teamsize + 1, m);
     particle_share_.assign(teamsize + 1, n);
-    pair_share_[0] = particle_share_[0] = 0;
+    pass_share_[0] = particle_share_[0] = 0;
     double before = 0.0;
     for (std::size_t t = 1; t < teamsize; ++t) {
         before += weight[t - 1];
         const auto k = std::min(m, static_cast<std::int64_t>(static_cast<double>(m) * (before / total)) / kLanes * kLanes);
-        pair_share_[t] = std::max(k, pair_share_[t - 1]);
-        particle_share_[t] = pair_share_[t] < m ? pairs_[static_cast<std::size_t>(pair_share_[t])].i : n;
+        pass_share_[t] = std::max(k, pass_share_[t - 1]);
+        particle_share_[t] = pass_share_[t] < m ? first_particle(pass_share_[t]) : n;
     }
 }
 
 // Every kShareWindow steps of the pass on more than one thread (and no fixed weights), each
-// thread's speed (its pairs per second in its share) becomes its weight when shares cut by
-// these speeds would shorten the slowest thread's time by more than kShareGain; the force
+// thread's speed (its pairs or bonds per second in its share) becomes its weight when shares cut
+// by these speeds would shorten the slowest thread's time by more than kShareGain; the force
 // owners are then built again at the next pass. Timing moves only the cut, never the results.
-void World::balance_pair_shares(int team) {
+void World::balance_pass_shares(int team) {
     constexpr std::int64_t kShareWindow = 64;
     constexpr double kShareGain = 0.03;
     const auto teamsize = static_cast<std::size_t>(team);
-    if (team < 2 || !sim_.thread_share_weights.empty() || pair_share_.size() != teamsize + 1) return;
+    if (team < 2 || !sim_.thread_share_weights.empty() || pass_share_.size() != teamsize + 1) return;
     if (++share_window_steps_ < kShareWindow) return;
     std::vector<double> speed(teamsize);
     double slowest = 0.0, total_pairs = 0.0, total_speed = 0.0;
     for (std::size_t t = 0; t < teamsize; ++t) {
-        const auto pairs = static_cast<double>(pair_share_[t + 1] - pair_share_[t]);
+        const auto pairs = static_cast<double>(pass_share_[t + 1] - pass_share_[t]);
         const double seconds = share_seconds_[t];
         if (!(pairs > 0.0 && seconds > 0.0)) return share_window_reset();
         speed[t] = pairs / seconds;

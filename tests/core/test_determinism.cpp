@@ -170,9 +170,10 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
         const BondModel model = c.model;
         INFO(bond_model_name(model) << (c.mixed ? " (bonded, gapped and slit)" : "") << " rho " << c.rho);
         std::size_t b1 = 0, b2 = 0, b3 = 0;
-        const std::uint64_t h1 = run_with_threads(1, b1, model, c.mixed, SimParams{}, nullptr, nullptr, c.rho);
-        const std::uint64_t h2 = run_with_threads(2, b2, model, c.mixed, SimParams{}, nullptr, nullptr, c.rho);
-        const std::uint64_t h3 = run_with_threads(3, b3, model, c.mixed, SimParams{}, nullptr, nullptr, c.rho);
+        EnergyLedger e1, e2, e3;
+        const std::uint64_t h1 = run_with_threads(1, b1, model, c.mixed, SimParams{}, &e1, nullptr, c.rho);
+        const std::uint64_t h2 = run_with_threads(2, b2, model, c.mixed, SimParams{}, &e2, nullptr, c.rho);
+        const std::uint64_t h3 = run_with_threads(3, b3, model, c.mixed, SimParams{}, &e3, nullptr, c.rho);
         REQUIRE(b1 > 0);  // bonds really softened or broke
         CHECK(h1 == h2);
         CHECK(h1 == h3);
@@ -180,6 +181,18 @@ TEST_CASE("soft bonds and flat joints: the same hash with 1, 2 and 3 threads", "
         CHECK(b1 == b3);
         CHECK(h1 == c.hash);
         CHECK(b1 == c.breaks);
+        check_same_energy(e1, e2);
+        check_same_energy(e1, e3);
+        if (model != BondModel::flat_joint) continue;
+        // The flat joint's pass shares its bonds like the parallel bond's pairs: shares far from
+        // equal give the same bits, energies and break count.
+        SimParams skewed;
+        skewed.thread_share_weights = {6.0, 1.0};
+        std::size_t bs = 0;
+        EnergyLedger es;
+        CHECK(run_with_threads(2, bs, model, c.mixed, skewed, &es, nullptr, c.rho) == h1);
+        CHECK(bs == b1);
+        check_same_energy(e1, es);
     }
 #ifdef _OPENMP
     omp_set_num_threads(2);
