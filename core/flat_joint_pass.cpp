@@ -18,7 +18,8 @@
 //      the generic bond phase does. The energy terms of a block are summed in bond order and its
 //      break events sorted into bond order, as the sets' joints run out of order;
 //   4. with forces into particles (BondPass::force_owners), each thread runs a contiguous share
-//      of the blocks and a block keeps its joints' outputs, then adds them in bond order to the
+//      of the bonds (BondPass::shares; a block two shares cut is summed as one: BlockPart) and
+//      a block (or its part) keeps its joints' outputs, then adds them in bond order to the
 //      particles the thread owns (their gather's order), writing a slot only where a particle
 //      is not owned or the joint was released; rebuild_slots() writes the others when read.
 // The results are bitwise those of the generic phase, for any thread count

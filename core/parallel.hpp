@@ -42,12 +42,6 @@ inline int thread_index() {
 #endif
 }
 
-/// Thread t's share of a pass over `blocks` blocks run by `team` threads: blocks [first, last),
-/// contiguous, in order (a pass that adds into particles as it goes: World::force_owner_).
-inline std::pair<std::int64_t, std::int64_t> thread_share(std::int64_t blocks, int team, int t) {
-    return {blocks * t / team, blocks * (t + 1) / team};
-}
-
 /// Calls body(begin, end, block) for every fixed block of [0, n), in parallel.
 template <class Body>
 void for_each_block(std::int64_t n, Body&& body) {

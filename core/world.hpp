@@ -153,8 +153,8 @@ private:
     /// Per particle, the thread whose share of the pass holds every one of its pairs (it adds
     /// their forces to the particle in the pass), -1 where its pairs span two shares or it has
     /// none (the gather sums its slots); built for a team of force_owner_team_ threads (0: to
-    /// build) over the blocks cut as thread_share(): the parallel bond's pass shares the pair
-    /// blocks, the flat joint's the bond blocks (its particles' pairs must all be acting joints).
+    /// build) over the shares of share_pass(): the parallel bond's pass shares the pairs, the
+    /// flat joint's the bonds (its particles' pairs must all be acting joints).
     std::vector<std::int16_t> force_owner_;
     int force_owner_team_ = 0;
     void build_force_owners(int team);

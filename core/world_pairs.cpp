@@ -441,8 +441,7 @@ struct World::ParallelBondPass {
 
     /// The batch's results in pair order: each pair's output slot (or its force and moments
     /// added to its particles), the contact energies summed in pair order (Tail: kept in order
-    /// for the head's sums), each holding bond's
-    /// stored energy. True if a bond of the batch broke.
+    /// for the head's sums), each holding bond's stored energy. True if a bond of the batch broke.
     template <bool Tail>
     __attribute__((always_inline)) inline bool write_results(std::int64_t k0, int count, const PairBatch& B,
                                                              const BatchResults& R, BlockOut& bo, std::int16_t thread) {
@@ -566,7 +565,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
     ParallelBondPass pass(*this, dt);
     const auto m = static_cast<std::int64_t>(pairs_.size());
     forces_from_pass_ = sim_.forces_in_pass;
-    if (forces_from_pass_) {  // each thread its share of the blocks, in order
+    if (forces_from_pass_) {  // each thread its share of the pairs (share_pass), in order
         pass.tails.resize(static_cast<std::size_t>(thread_count()));
         share_seconds_.resize(static_cast<std::size_t>(thread_count()), 0.0);
         int team_run = 1;
@@ -608,7 +607,7 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
 // holds both its first and its last pair (so all of them: the shares are contiguous), else -1.
 // A particle's incidence list is in pair order, so those are its list's ends. The flat joint's
 // pass runs over the bonds (in pair order too): there a particle's pairs must all be acting
-// joints (the contacts phase writes the others' slots), and the shares cut the bond blocks.
+// joints (the contacts phase writes the others' slots), and the shares cut the bonds.
 void World::build_force_owners(int team) {
     const bool over_bonds = bond_params_.model != BondModel::parallel_bond;
     const auto unit = [&](std::int32_t slot) -> std::int64_t {  // the pass's index of pair `slot`
