@@ -226,14 +226,13 @@ World::IntegrationSums World::integrate() {
                 // A chunk without a prescribed velocity or spin has no boundary work: its terms are +0,
                 // and x - (+0) is x, so they are not subtracted (the longest chain of the sums).
                 const bool any_prescribed = integrate_chunk(arrays, p0, count, dt, alpha, T);
-                for (std::int64_t q = 0; q < count; ++q) {
-                    s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);
-                    if (s.runaway < 0 && T.runaway[q] != 0.0) s.runaway = p0 + q;
-                }
                 if (!part.head()) {  // a tail: its terms kept for the head's sums
-                    for (std::int64_t q = 0; q < count; ++q)
+                    for (std::int64_t q = 0; q < count; ++q) {
                         tail.terms.push_back({T.kinetic[q], T.damping[q], any_prescribed ? T.boundary_v[q] : 0.0,
                                               any_prescribed ? T.boundary_w[q] : 0.0});
+                        s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);
+                        if (s.runaway < 0 && T.runaway[q] != 0.0) s.runaway = p0 + q;
+                    }
                     continue;
                 }
                 for (std::int64_t q = 0; q < count; ++q) {  // the sums in particle order
@@ -243,6 +242,8 @@ World::IntegrationSums World::integrate() {
                     }
                     s.kinetic += T.kinetic[q];
                     s.damping -= T.damping[q];
+                    s.max_disp2 = std::max(s.max_disp2, T.moved2[q]);
+                    if (s.runaway < 0 && T.runaway[q] != 0.0) s.runaway = p0 + q;
                 }
             }
             if (part.head()) {
