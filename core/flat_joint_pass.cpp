@@ -25,7 +25,6 @@
 // The results are bitwise those of the generic phase, for any thread count
 // (tests/core/test_determinism.cpp: the pinned hashes, and the lanes against the scalar kernel).
 #include <algorithm>
-#include <chrono>
 #include <memory>
 #include <utility>
 
@@ -409,10 +408,7 @@ void run_into_particles(FlatJointPass& joints, const BondPass& pass) {
             joints.owner = pass.force_owners(team);  // (cuts the shares again when stale)
             shares.team = team;
         }
-        const auto [first, last] = item_share(*shares.units, nb, team, t);
-        const auto start = std::chrono::steady_clock::now();
-        for_each_block_part(first, last, [&](const BlockPart& part) { joints.block(part, t); });
-        (*shares.seconds)[static_cast<std::size_t>(t)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        run_timed_share(*shares.units, nb, team, t, *shares.seconds, [&](const BlockPart& part) { joints.block(part, t); });
     }
     joints.hand_back_released(*pass.released_particles);
 }

@@ -3,6 +3,7 @@
 // the problem size, never on the thread count, and per-block partial results are combined in
 // block order. Floating-point sums therefore come out bitwise identical for any thread count.
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -77,6 +78,17 @@ template <class Body>
 void for_each_block_part(std::int64_t first, std::int64_t last, Body&& body) {
     for (std::int64_t b = first / kBlockSize; b * kBlockSize < last; ++b)
         body(BlockPart{std::max(first, b * kBlockSize), std::min(last, (b + 1) * kBlockSize), b});
+}
+
+/// Thread t's share of n items cut at `bounds` (item_share), part by part in order (body(part)),
+/// its time in it added to seconds[t] [s] (World::balance_pass_shares weighs the shares by it).
+template <class Body>
+void run_timed_share(const std::vector<std::int64_t>& bounds, std::int64_t n, int team, int t, std::vector<double>& seconds,
+                     Body&& body) {
+    const auto [first, last] = item_share(bounds, n, team, t);
+    const auto start = std::chrono::steady_clock::now();
+    for_each_block_part(first, last, body);
+    seconds[static_cast<std::size_t>(t)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 /// Sums `partials` in block order (deterministic).

@@ -33,7 +33,6 @@
 // order as the scalar code (-ffp-contract=off: no FMA; no reassociation), and a select keeps
 // exactly the value the separate phases stored, so the results are bitwise the same.
 #include <algorithm>
-#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -582,12 +581,9 @@ World::BondEnergy World::compute_contacts_and_parallel_bonds(double dt, double& 
             {
                 if (force_owner_team_ != team) build_force_owners(team);
                 pass.owner = force_owner_.data();
+                team_run = team;
             }  // (a barrier)
-            const auto [first, last] = item_share(pass_share_, m, team, t);
-            const auto start = std::chrono::steady_clock::now();
-            for_each_block_part(first, last, [&](const BlockPart& part) { pass.block<false>(part, t); });
-            share_seconds_[static_cast<std::size_t>(t)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (t == 0) team_run = team;
+            run_timed_share(pass_share_, m, team, t, share_seconds_, [&](const BlockPart& part) { pass.block<false>(part, t); });
         }
         balance_pass_shares(team_run);
     } else {
