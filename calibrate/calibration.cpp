@@ -217,10 +217,12 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
             if (problem.scale_up.enabled()) {
                 st.scale_up = scale_up_point(problem, *sets, executor, ledger, st.solution.best, st.fitted, log);
                 result.scale_up_runs += st.scale_up.runs;
+                result.scale_up_cost += st.scale_up.cost;
             }
             if (problem.validation.enabled()) {
                 validate_stage(st, problem, space, *sets, executor, ledger, evaluator, log);
                 result.validation_runs += st.validation.runs;
+                result.validation_cost += st.validation.cost;
             }
         }
     }
@@ -229,6 +231,7 @@ CalibrationResult run_calibration(const CalibrationProblem& problem, const CubeM
     result.runs_executed = evaluator.runs_executed();
     result.runs_from_ledger = evaluator.runs_from_ledger();
     result.runs_failed = evaluator.runs_failed();
+    result.fit_cost = evaluator.cost();
     result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }

@@ -14,6 +14,7 @@
 #include "calibrate/cube_model.hpp"
 #include "calibrate/evaluator.hpp"
 #include "calibrate/problem.hpp"
+#include "calibrate/stage_cost.hpp"
 #include "calibrate/execution/run_executor.hpp"
 #include "calibrate/scale_up.hpp"
 #include "calibrate/solvers/solver.hpp"
@@ -53,6 +54,9 @@ struct CalibrationResult {
     int runs_used = 0, runs_executed = 0, runs_from_ledger = 0, runs_failed = 0;
     int scale_up_runs = 0;                 ///< runs of the scale-up specimens (apart from the budget)
     int validation_runs = 0;               ///< runs of the validation specimens (apart from the budget)
+    /// What each part cost: the fit's runs (with the tension tests at its result), the
+    /// scale-up's and the validation's.
+    StageCost fit_cost, scale_up_cost, validation_cost;
     double wall_seconds = 0.0;
     std::vector<std::string> log;          ///< the milestone lines
 };

@@ -136,7 +136,10 @@ std::vector<std::size_t> Evaluator::serve_from_ledger(std::vector<Job>& jobs) {
         if (auto found = served_outcome(jobs[j].key)) {
             jobs[j].outcome = *found;
             jobs[j].done = true;
-            if (used_.insert(jobs[j].key).second) ++served_;
+            if (used_.insert(jobs[j].key).second) {
+                ++served_;
+                cost_.add_served(*found);
+            }
         } else if (queued.insert(jobs[j].key).second) {
             queue.push_back(j);
         }
@@ -170,6 +173,7 @@ void Evaluator::record(std::size_t k, const RunOutcome& outcome, const RunPlace&
     job.done = true;
     used_.insert(job.key);
     ++executed_;
+    cost_.add_run(job.outcome);
     if (!job.outcome.ok()) ++failed_;
     run_seconds_ += job.outcome.wall_seconds;
     if (sand_runs_.size() <= job.sand) {

@@ -19,6 +19,7 @@
 #include "calibrate/execution/ledger.hpp"
 #include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
+#include "calibrate/stage_cost.hpp"
 #include "calibrate/execution/run_executor.hpp"
 
 namespace gradem::cal {
@@ -112,6 +113,8 @@ public:
     [[nodiscard]] int runs_executed() const { return executed_; }
     [[nodiscard]] int runs_from_ledger() const { return served_; }
     [[nodiscard]] int runs_failed() const { return failed_; }
+    /// What the runs made here cost, and what the ledger served (StageCost).
+    [[nodiscard]] const StageCost& cost() const { return cost_; }
     [[nodiscard]] const std::vector<Evaluation>& history() const { return history_; }
     void note_best(double objective) { best_objective_ = objective; }
     /// The mean wall time of the runs of problem sand `sand` made here so far [s] (0: none yet).
@@ -166,6 +169,7 @@ private:
     std::function<void(const Progress&)> progress_;
     std::set<std::string> used_;
     int executed_ = 0, served_ = 0, failed_ = 0, reserve_ = 0;
+    StageCost cost_;
     double run_seconds_ = 0.0, best_objective_ = 0.0;
     std::vector<double> sand_run_seconds_;  ///< per problem sand: Σ wall seconds of its runs here
     std::vector<int> sand_runs_;            ///< per problem sand: its runs here

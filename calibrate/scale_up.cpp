@@ -31,7 +31,7 @@ StageScaleUp scale_up_point(const CalibrationProblem& problem, const ValidatedMo
     // 1. The fit's result on the scale-up specimens.
     const CalibrationProblem on_set = scale_up_problem(problem);
     up.measured = evaluate_on_set(on_set, model, SpecimenSet::scale_up, executor, ledger, point, sands, "scale-up", up.runs,
-                                  up.from_ledger);
+                                  up.from_ledger, up.cost);
     if (up.measured.failed) {
         up.note = "not done: a scale-up run failed (" + up.measured.failure + "); the fit's result stands";
     } else {

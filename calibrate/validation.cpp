@@ -76,11 +76,12 @@ SetEvaluator::SetEvaluator(const CalibrationProblem& on_set, const ValidatedMode
 
 Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set, RunExecutor& executor,
                            Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
-                           const std::string& label, int& runs, int& from_ledger) {
+                           const std::string& label, int& runs, int& from_ledger, StageCost& cost) {
     SetEvaluator on(on_set, model, set, executor, ledger);
     Evaluation e = on.evaluator.evaluate(point, sands, label);
     runs = on.evaluator.runs_used();
     from_ledger = on.evaluator.runs_from_ledger();
+    cost = on.evaluator.cost();
     return e;
 }
 
@@ -113,6 +114,7 @@ StageValidation PointValidation::collect(const std::function<void(const std::str
     v.evaluation = set_.evaluator.collect().front();
     v.runs = set_.evaluator.runs_used();
     v.from_ledger = set_.evaluator.runs_from_ledger();
+    v.cost = set_.evaluator.cost();
     if (log)
         log("validation on " + std::to_string(set_.problem.seeds.size()) + (set_.problem.seeds.size() == 1 ? " unseen seed" : " unseen seeds") +
             ", edge " + common::format_significant(set_.problem.base.specimen.genesis.edge * 1e3, 4) + " mm: " + std::to_string(v.runs) +

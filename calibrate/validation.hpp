@@ -20,6 +20,7 @@
 #include "calibrate/execution/ledger.hpp"
 #include "calibrate/parameters.hpp"
 #include "calibrate/problem.hpp"
+#include "calibrate/stage_cost.hpp"
 #include "calibrate/execution/run_executor.hpp"
 #include "calibrate/study/study_models.hpp"
 
@@ -82,15 +83,16 @@ struct SetEvaluator {
 
 /// `point` on set `set` of `model` for `sands` through `executor` (which runs `model`'s
 /// requests), recording into `ledger`, as `on_set` (the problem on that set's specimens) defines
-/// its runs; `runs` and `from_ledger` receive its counts.
+/// its runs; `runs`, `from_ledger` and `cost` receive its counts and cost.
 Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedModel& model, SpecimenSet set, RunExecutor& executor,
                            Ledger& ledger, const std::vector<double>& point, const std::vector<std::size_t>& sands,
-                           const std::string& label, int& runs, int& from_ledger);
+                           const std::string& label, int& runs, int& from_ledger, StageCost& cost);
 
 /// One stage's validation: its result on the validation specimens of `sands`.
 struct StageValidation {
     Evaluation evaluation;            ///< empty sands: not run (no result, or it failed to run)
     int runs = 0, from_ledger = 0;    ///< runs it took, and how many the ledger served
+    StageCost cost;                     ///< what its runs cost
     std::string note;                 ///< why it was not run, if it was not
 };
 

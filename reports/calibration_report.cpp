@@ -388,6 +388,23 @@ json stage_json(const CalibrationProblem& p, const CalibrationStage& st) {
     return j;
 }
 
+/// A part's StageCost: runs made now with their particle-steps and worker-seconds, runs served.
+json stage_cost_json(const StageCost& c) {
+    return {{"runs_now", c.executed},
+            {"particle_steps", c.particle_steps},
+            {"worker_seconds", c.worker_seconds},
+            {"from_ledger", c.from_ledger},
+            {"ledger_particle_steps", c.ledger_particle_steps}};
+}
+
+/// "12 runs, 1.23e+09 particle-steps, 345 worker-s (3 from the ledger)".
+std::string stage_cost_text(const StageCost& c) {
+    std::string t = std::to_string(c.executed) + (c.executed == 1 ? " run, " : " runs, ") + fmt(c.particle_steps, 3) +
+                    " particle-steps, " + fmt(c.worker_seconds, 3) + " worker-s";
+    if (c.from_ledger) t += " (" + std::to_string(c.from_ledger) + " from the ledger, " + fmt(c.ledger_particle_steps, 3) + " particle-steps)";
+    return t;
+}
+
 json tension_target_json(const CalibrationProblem& p) {
     const TensionTarget& t = p.tension;
     json j = {{"source", to_string(t.source)}};
@@ -493,7 +510,10 @@ json summary_json(const CalibrationProblem& p, const CalibrationResult& r) {
             {"dem_test_runs", r.runs_used},
             {"runs", {{"total", r.runs_used}, {"executed_now", r.runs_executed}, {"from_ledger", r.runs_from_ledger},
                       {"failed", r.runs_failed}, {"budget", p.solver.max_runs}, {"scale_up", r.scale_up_runs},
-                      {"validation", r.validation_runs}}},
+                      {"validation", r.validation_runs},
+                      {"cost", {{"fit", stage_cost_json(r.fit_cost)},
+                                {"scale_up", stage_cost_json(r.scale_up_cost)},
+                                {"validation", stage_cost_json(r.validation_cost)}}}}},
             {"evaluations", r.history.size()},
             {"wall_seconds", r.wall_seconds},
             {"ledger", p.ledger.string()},
@@ -536,7 +556,11 @@ void header_markdown(std::ostringstream& md, const CalibrationProblem& p, const 
     md << "; specimen edge " << fmt(p.base.specimen.genesis.edge * 1e3) << " mm\n"
        << "- DEM test runs: **" << r.runs_used << "** of a budget of " << p.solver.max_runs << " (" << r.runs_executed
        << " run now, " << r.runs_from_ledger << " from the ledger, " << r.runs_failed << " failed); " << r.history.size()
-       << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n";
+       << " evaluations; wall time " << clock_text(r.wall_seconds) << "\n"
+       << "- cost: fit " << stage_cost_text(r.fit_cost);
+    if (p.scale_up.enabled()) md << "; scale-up " << stage_cost_text(r.scale_up_cost);
+    if (p.validation.enabled()) md << "; validation " << stage_cost_text(r.validation_cost);
+    md << "\n";
     if (p.validation.enabled())
         md << "- validation specimens: " << validation_specimens_text(p) << " (" << r.validation_runs
            << " runs after the fit, apart from the budget)\n";

@@ -159,6 +159,21 @@ TEST_CASE("a repeated request is served from the ledger, not run again", "[calib
     CHECK(again.runs_executed == 0);
     CHECK(again.runs_from_ledger == first.runs_used);
     CHECK(best_of(again) == best_of(first));  // bitwise: the ledger stores exact doubles
+    // What the fit cost (summary.json "runs" "cost" "fit"): every stand-in run is 1000 grains x 1
+    // step in 1 ms; the second calibration's runs are the first's, served, so it costs nothing.
+    CHECK(first.fit_cost.executed == first.runs_executed);
+    CHECK(first.fit_cost.particle_steps == 1000.0 * first.runs_executed);
+    CHECK(std::fabs(first.fit_cost.worker_seconds - 1e-3 * first.runs_executed) < 1e-12);
+    CHECK(first.fit_cost.from_ledger == 0);
+    CHECK(again.fit_cost.executed == 0);
+    CHECK(again.fit_cost.particle_steps == 0.0);
+    CHECK(again.fit_cost.worker_seconds == 0.0);
+    CHECK(again.fit_cost.from_ledger == first.runs_used);
+    CHECK(again.fit_cost.ledger_particle_steps == 1000.0 * first.runs_used);
+    const nlohmann::json cost = report::summary_json(problem, again)["runs"]["cost"];
+    CHECK(cost["fit"]["runs_now"] == 0);
+    CHECK(cost["fit"]["from_ledger"] == first.runs_used);
+    CHECK(cost["validation"]["runs_now"] == 0);  // no [validation]
 }
 
 namespace {

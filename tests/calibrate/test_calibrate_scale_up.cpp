@@ -81,6 +81,8 @@ TEST_CASE("scales set on larger specimens undo a known size effect", "[calibrate
     const cal::CalibrationStage& st = r.stages.at(0);
     CHECK(st.scale_up.runs == 4);
     CHECK(r.scale_up_runs == 4);
+    CHECK(r.scale_up_cost.executed == 4);  // apart from the fit's cost: 4 stand-in runs of 1000 grains x 1 step
+    CHECK(r.scale_up_cost.particle_steps == 4000.0);
     CHECK(st.scale_up.measured.values == st.solution.best);
     CHECK(st.scale_up.scales.alpha == Approx(1.0 / kModulusEffect).epsilon(0.02));
     CHECK(st.scale_up.scales.beta == Approx(1.0 / kStrengthEffect).epsilon(0.02));

@@ -61,6 +61,11 @@ TEST_CASE("validation on unseen seeds: run after the fit, apart from the budget,
     // Every sand on every validation seed, once: 2 sands x 2 seeds.
     CHECK(st.validation.runs == 4);
     CHECK(r.validation_runs == 4);
+    // Its cost apart from the fit's: 4 stand-in runs of 1000 grains x 1 step.
+    CHECK(r.validation_cost.executed == 4);
+    CHECK(r.validation_cost.particle_steps == 4000.0);
+    CHECK(r.fit_cost.executed == r.runs_executed);
+    CHECK(r.fit_cost.particle_steps == 1000.0 * r.runs_executed);
     REQUIRE(st.validation.evaluation.runs.size() == 4);
     CHECK(st.validation.evaluation.values == st.solution.best);
     CHECK(r.runs_used <= problem.solver.max_runs);
