@@ -26,7 +26,7 @@ struct StageScaleUp {
     Scales scales;              ///< α (moduli), β (strengths) applied
     std::vector<double> point;  ///< the rescaled parameters: the stage's result (empty: not done)
     int runs = 0, from_ledger = 0;
-    StageCost cost;               ///< what its runs cost
+    StageCost cost;             ///< what its runs cost
     double noise_floor[kQuantityCount] = {0, 0, 0, 0};  ///< of `measured`: max relative SE of the seed mean (measure_noise)
     std::string note;           ///< why it was not done, if it was not
 };

@@ -92,7 +92,7 @@ Evaluation evaluate_on_set(const CalibrationProblem& on_set, const ValidatedMode
 struct StageValidation {
     Evaluation evaluation;            ///< empty sands: not run (no result, or it failed to run)
     int runs = 0, from_ledger = 0;    ///< runs it took, and how many the ledger served
-    StageCost cost;                     ///< what its runs cost
+    StageCost cost;                   ///< what its runs cost
     std::string note;                 ///< why it was not run, if it was not
 };
 

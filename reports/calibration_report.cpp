@@ -397,7 +397,7 @@ json stage_cost_json(const StageCost& c) {
             {"ledger_particle_steps", c.ledger_particle_steps}};
 }
 
-/// "12 runs, 1.23e+09 particle-steps, 345 worker-s (3 from the ledger)".
+/// "12 runs, 1.23e+09 particle-steps, 345 worker-s (3 from the ledger, 2.1e+08 particle-steps)".
 std::string stage_cost_text(const StageCost& c) {
     std::string t = std::to_string(c.executed) + (c.executed == 1 ? " run, " : " runs, ") + fmt(c.particle_steps, 3) +
                     " particle-steps, " + fmt(c.worker_seconds, 3) + " worker-s";
